@@ -1,0 +1,158 @@
+// The `tandem` command: run and list scenes.
+#include <tandem/scenes.h>
+#include <tandem/world.h>
+
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+namespace {
+
+using tandem::BuiltinScene;
+using tandem::StepReport;
+
+struct RunOptions {
+  std::string scene;
+  long steps = 0;
+  double seconds = 0.0;
+  double timeStep = 0.0;
+  int iterations = 0;
+  bool report = false;
+  bool quiet = false;
+};
+
+double percentile(std::vector<double> values, double fraction) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const size_t index = std::min(values.size() - 1, static_cast<size_t>(fraction * (values.size() - 1) + 0.5));
+  return values[index];
+}
+
+void printReport(const StepReport& report, const std::vector<double>& stageTotals, long steps,
+                 const std::array<int, static_cast<size_t>(tandem::RowType::Count)>& maxRows) {
+  std::printf("\nTime per stage (mean per step):\n");
+  double total = 0.0;
+  for (double seconds : stageTotals) total += seconds;
+  for (size_t s = 0; s < stageTotals.size(); ++s)
+    std::printf("  %-20s %8.3f ms  %5.1f %%\n", std::string(tandem::kStageNames[s]).c_str(),
+                1e3 * stageTotals[s] / steps, total > 0 ? 100.0 * stageTotals[s] / total : 0.0);
+  std::printf("Rows by type (last step / maximum):\n");
+  for (size_t t = 0; t < report.rowCounts.size(); ++t)
+    std::printf("  %-20s %8d / %d\n", std::string(tandem::kRowTypeNames[t]).c_str(), report.rowCounts[t], maxRows[t]);
+  std::printf("  %-20s %8d\n", "total", report.totalRows());
+  std::printf("Bullet: %d contact manifolds, %d joints\n", report.bulletContactManifolds, report.bulletJoints);
+  std::printf("RMS of delta-lambda per iteration, last step (N s):");
+  for (double rms : report.rmsDeltaLambda) std::printf(" %.3g", rms);
+  std::printf("\n");
+}
+
+int run(const RunOptions& options) {
+  const BuiltinScene* scene = tandem::findBuiltinScene(options.scene);
+  if (!scene) {
+    std::fprintf(stderr, "tandem: no scene named '%s' (see `tandem list`)\n", options.scene.c_str());
+    return 2;
+  }
+  tandem::World world;
+  tandem::WorldSettings settings = world.settings();
+  if (options.iterations > 0) settings.solver.iterations = options.iterations;
+  if (tandem::Status s = world.setSettings(settings); !s) {
+    std::fprintf(stderr, "tandem: %s\n", s.message().c_str());
+    return 2;
+  }
+  if (tandem::Status s = scene->build(world); !s) {
+    std::fprintf(stderr, "tandem: scene '%s': %s\n", options.scene.c_str(), s.message().c_str());
+    return 1;
+  }
+  const double h = options.timeStep > 0 ? options.timeStep : scene->timeStep;
+  const double seconds = options.seconds > 0 ? options.seconds : scene->defaultSeconds;
+  const long steps = options.steps > 0 ? options.steps : std::lround(seconds / h);
+
+  int nodes = 0;
+  for (int d = 0; d < world.deformableCount(); ++d)
+    nodes += static_cast<int>(world.nodePositions(tandem::DeformableId{d}).size());
+  if (!options.quiet)
+    std::printf("Scene '%s': %s\n  %d deformable bodies (%d nodes), %d rigid bodies; h = %.4g s, %d iterations\n",
+                std::string(scene->name).c_str(), std::string(scene->description).c_str(), world.deformableCount(),
+                nodes, world.rigidBodyCount(), h, world.settings().solver.iterations);
+
+  std::vector<double> stepMs;
+  stepMs.reserve(steps);
+  std::vector<double> stageTotals(static_cast<size_t>(tandem::Stage::Count), 0.0);
+  std::array<int, static_cast<size_t>(tandem::RowType::Count)> maxRows{};
+  int maxTotalRows = 0;
+  const bool progress = !options.quiet && isatty(fileno(stdout)) && steps >= 200;
+  const auto start = std::chrono::steady_clock::now();
+  for (long i = 0; i < steps; ++i) {
+    const auto before = std::chrono::steady_clock::now();
+    if (tandem::Status s = world.step(h); !s) {
+      std::fprintf(stderr, "\ntandem: %s\n", s.message().c_str());
+      return 1;
+    }
+    stepMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - before).count());
+    const StepReport& report = world.lastReport();
+    for (size_t s = 0; s < stageTotals.size(); ++s) stageTotals[s] += report.stageSeconds[s];
+    for (size_t t = 0; t < maxRows.size(); ++t) maxRows[t] = std::max(maxRows[t], report.rowCounts[t]);
+    maxTotalRows = std::max(maxTotalRows, report.totalRows());
+    if (progress && (i % 50 == 0 || i + 1 == steps)) {
+      std::printf("\r  [%-40s] %ld/%ld steps", std::string(40 * (i + 1) / steps, '#').c_str(), i + 1, steps);
+      std::fflush(stdout);
+    }
+  }
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (progress) std::printf("\n");
+
+  double sum = 0.0;
+  for (double ms : stepMs) sum += ms;
+  const double mean = steps ? sum / steps : 0.0;
+  std::printf("Simulated %.2f s in %ld steps (up to %d rows) in %.3f s of wall time: %.1fx real time\n",
+              steps * h, steps, maxTotalRows, wall, wall > 0 ? steps * h / wall : 0.0);
+  std::printf("ms per step: mean %.3f, median %.3f, p95 %.3f, max %.3f\n", mean, percentile(stepMs, 0.5),
+              percentile(stepMs, 0.95), percentile(stepMs, 1.0));
+  if (!options.quiet) {
+    for (int b = 0; b < world.rigidBodyCount(); ++b) {
+      const tandem::RigidBodyId id{b};
+      if (world.rigidMass(id) == 0) continue;
+      const tandem::Vec3 p = world.rigidPosition(id);
+      std::printf("  rigid '%s' at (%.3f, %.3f, %.3f) m, speed %.3f m/s\n", world.rigidName(id).c_str(), p.x(), p.y(),
+                  p.z(), world.rigidLinearVelocity(id).norm());
+    }
+  }
+  if (options.report) printReport(world.lastReport(), stageTotals, steps, maxRows);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Tandem: two-way coupled rigid and deformable bodies"};
+  app.require_subcommand(1);
+
+  RunOptions options;
+  CLI::App* runCommand = app.add_subcommand("run", "Run a scene headless and print what it simulated and how fast");
+  runCommand->add_option("scene", options.scene, "Built-in scene name (see `tandem list`)")->required();
+  auto* stepsOption = runCommand->add_option("--steps", options.steps, "Number of steps")->check(CLI::PositiveNumber);
+  runCommand->add_option("--seconds", options.seconds, "Simulated seconds (instead of --steps)")
+      ->check(CLI::PositiveNumber)
+      ->excludes(stepsOption);
+  runCommand->add_option("--dt", options.timeStep, "Time step in seconds")->check(CLI::Range(1e-6, 1.0));
+  runCommand->add_option("--iterations", options.iterations, "Solver iterations K")->check(CLI::Range(1, 1000));
+  runCommand->add_flag("--report", options.report, "Print stage times, row counts and convergence");
+  runCommand->add_flag("--quiet", options.quiet, "Print only the summary lines");
+
+  CLI::App* listCommand = app.add_subcommand("list", "List the built-in scenes");
+
+  CLI11_PARSE(app, argc, argv);
+  if (listCommand->parsed()) {
+    for (const BuiltinScene& scene : tandem::builtinScenes())
+      std::printf("%-18s %s\n", std::string(scene.name).c_str(), std::string(scene.description).c_str());
+    return 0;
+  }
+  return run(options);
+}

@@ -1,0 +1,229 @@
+// The Tandem world: Bullet rigid bodies and Tandem deformable bodies stepped together.
+//
+// Units are SI throughout: metres, kilograms, seconds, newtons. Impulses are in N·s.
+// Everything a user adds is referred to by a small typed index; nothing hands out pointers.
+#pragma once
+
+#include <tandem/mesh.h>
+#include <tandem/report.h>
+#include <tandem/types.h>
+
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+
+namespace tandem {
+
+struct RigidBodyId {
+  int32_t index = -1;
+  friend bool operator==(RigidBodyId, RigidBodyId) = default;
+};
+struct DeformableId {
+  int32_t index = -1;
+  friend bool operator==(DeformableId, DeformableId) = default;
+};
+struct AnchorId {
+  int32_t index = -1;
+};
+struct FixedPointId {
+  int32_t index = -1;
+};
+struct JointId {
+  int32_t index = -1;
+};
+
+inline constexpr double kUnbounded = std::numeric_limits<double>::infinity();
+
+// ---- Solver ---------------------------------------------------------------------------------
+
+struct SolverSettings {
+  int iterations = 4;        // K: each is one Bullet iteration, then one sweep over Tandem's rows
+  double baumgarte = 0.1;    // β·h: the fraction of a position error corrected per step (β = 0.1/h)
+  bool warmStart = true;     // start each row from last step's impulse
+};
+
+struct WorldSettings {
+  Vec3 gravity{0.0, -9.81, 0.0};  // m/s²
+  SolverSettings solver;
+};
+
+// ---- Rigid bodies (Bullet) ------------------------------------------------------------------
+
+enum class ShapeType { Box, Sphere, Cylinder, Capsule, Plane };
+
+struct RigidShape {
+  ShapeType type = ShapeType::Box;
+  Vec3 halfExtents{0.5, 0.5, 0.5};  // box
+  double radius = 0.5;              // sphere, cylinder, capsule
+  double halfHeight = 0.5;          // cylinder, capsule: along the body's local y axis
+  Vec3 planeNormal{0.0, 1.0, 0.0};  // plane: points n with n·x = planeOffset
+  double planeOffset = 0.0;
+
+  static RigidShape box(const Vec3& halfExtents);
+  static RigidShape sphere(double radius);
+  static RigidShape cylinder(double radius, double halfHeight);
+  static RigidShape capsule(double radius, double halfHeight);
+  static RigidShape plane(const Vec3& normal, double offset);
+};
+
+enum class MotionType { Dynamic, Static, Kinematic };
+
+struct RigidBodyDesc {
+  std::string name;
+  RigidShape shape;
+  MotionType motion = MotionType::Dynamic;
+  double mass = 1.0;  // kg, dynamic bodies only
+  Vec3 position = Vec3::Zero();
+  Quat orientation = Quat::Identity();
+  Vec3 linearVelocity = Vec3::Zero();   // m/s
+  Vec3 angularVelocity = Vec3::Zero();  // rad/s, world frame
+  double friction = 0.5;
+  double restitution = 0.0;
+};
+
+// A revolute joint about `axis` through `pivot` (both world frame, at creation time),
+// between `bodyA` and `bodyB`, or between `bodyA` and the world when bodyB is unset.
+struct HingeDesc {
+  RigidBodyId bodyA;
+  std::optional<RigidBodyId> bodyB;
+  Vec3 pivot = Vec3::Zero();
+  Vec3 axis{0.0, 0.0, 1.0};
+};
+
+// ---- Deformable bodies ----------------------------------------------------------------------
+
+// How an inextensibility row's impulse is bounded (paper §4.2).
+enum class InextensibilityMode {
+  ResistBoth,         // -maxForce·h ≤ λ ≤ maxForce·h
+  ResistCompression,  // 0 ≤ λ ≤ maxForce·h: pushes apart, never pulls
+  ResistStretch,      // -maxForce·h ≤ λ ≤ 0: pulls together, never pushes
+};
+
+struct InextensibilitySettings {
+  bool enabled = false;
+  InextensibilityMode mode = InextensibilityMode::ResistBoth;
+  double maxForce = kUnbounded;  // N; the impulse bound per step is maxForce·h
+};
+
+struct BendingSettings {
+  bool enabled = false;
+  double maxForce = 1.0;  // N; bounds |λ| ≤ maxForce·h, i.e. how hard the cloth resists folding
+};
+
+struct MassSpringSettings {
+  double stiffness = 0.0;  // N/m per edge spring
+  double damping = 0.0;    // N·s/m per edge spring, along the edge
+};
+
+// How a deformable's bilateral rows (fixed points, anchors and inextensibility without force
+// bounds) are solved in each sweep. Direct: exactly, as one block (sparse LDLᵀ factorised once
+// per step): rigid-grade ropes and attachments at any mass ratio. Iterative: by the projected
+// Gauss-Seidel sweep like every other row, cheaper per sweep for large cloths but slow to
+// converge when light nodes hold heavy bodies. Auto: direct up to kAutoDirectRowLimit rows.
+enum class RowSolverKind { Auto, Direct, Iterative };
+inline constexpr int kAutoDirectRowLimit = 1500;
+
+struct DeformableDesc {
+  std::string name;
+  DeformableMesh mesh;
+  MassSpringSettings springs;
+  InextensibilitySettings inextensibility;
+  BendingSettings bending;
+  RowSolverKind rowSolver = RowSolverKind::Auto;
+};
+
+// A point fixed in a rigid body that a point of a deformable is held to: a node, or a point
+// with barycentric weights on up to four nodes (an edge, a face or a tetrahedron).
+struct AnchorDesc {
+  DeformableId deformable;
+  std::array<int32_t, 4> nodes{-1, -1, -1, -1};
+  std::array<double, 4> weights{1.0, 0.0, 0.0, 0.0};  // must sum to 1
+  int nodeCount = 1;
+  RigidBodyId body;
+  std::optional<Vec3> localPoint;  // in the body's frame; default: where the deformable point is now
+  double maxForce = kUnbounded;    // N; the anchor lets go of nothing, it only limits its pull
+
+  static AnchorDesc node(DeformableId deformable, int32_t node, RigidBodyId body);
+};
+
+struct AnchorState {
+  Vec3 impulse = Vec3::Zero();  // N·s applied to the deformable in the last step (body gets −impulse)
+  Vec3 worldPointOnBody = Vec3::Zero();
+  Vec3 worldPointOnDeformable = Vec3::Zero();
+};
+
+class World {
+ public:
+  World();  // default settings; change them with setSettings
+  ~World();
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+
+  // Settings (validated: a bad value is refused with a message and nothing changes)
+  Status setSettings(const WorldSettings& settings);
+  const WorldSettings& settings() const;
+
+  // Rigid bodies and joints
+  Result<RigidBodyId> addRigidBody(const RigidBodyDesc& desc);
+  Result<JointId> addHinge(const HingeDesc& desc);
+  int rigidBodyCount() const;
+  std::optional<RigidBodyId> findRigidBody(std::string_view name) const;
+  const std::string& rigidName(RigidBodyId body) const;
+  Vec3 rigidPosition(RigidBodyId body) const;
+  Quat rigidOrientation(RigidBodyId body) const;
+  Vec3 rigidLinearVelocity(RigidBodyId body) const;
+  Vec3 rigidAngularVelocity(RigidBodyId body) const;
+  double rigidMass(RigidBodyId body) const;  // 0 for static and kinematic bodies
+  bool rigidIsAwake(RigidBodyId body) const;
+  void putRigidToSleep(RigidBodyId body);
+  // Moves a kinematic body to this pose by the end of the next step (its velocity follows).
+  Status setKinematicTarget(RigidBodyId body, const Vec3& position, const Quat& orientation);
+  // Sum of the normal impulses (N·s) of Bullet's contacts between two rigid bodies in the last step.
+  double rigidContactImpulse(RigidBodyId a, RigidBodyId b) const;
+  // Total impulse (N·s) and angular impulse about the centre of mass (N·m·s) that Tandem's
+  // rows put on a rigid body in the last step.
+  Vec3 deformableImpulseOnRigid(RigidBodyId body) const;
+  Vec3 deformableAngularImpulseOnRigid(RigidBodyId body) const;
+
+  // Deformable bodies
+  Result<DeformableId> addDeformable(const DeformableDesc& desc);
+  int deformableCount() const;
+  std::optional<DeformableId> findDeformable(std::string_view name) const;
+  const std::string& deformableName(DeformableId body) const;
+  std::span<const Vec3> nodePositions(DeformableId body) const;
+  std::span<const Vec3> nodeVelocities(DeformableId body) const;
+  std::span<const double> nodeInverseMasses(DeformableId body) const;
+  const DeformableMesh& restMesh(DeformableId body) const;  // the mesh as added
+  Status setNodeVelocity(DeformableId body, int32_t node, const Vec3& velocity);
+  // Pins a node where it is: its inverse mass becomes zero.
+  Status fixNode(DeformableId body, int32_t node);
+
+  // Constraints between a deformable and the world or a rigid body
+  Result<FixedPointId> addFixedPoint(DeformableId body, int32_t node, const Vec3& target,
+                                     double maxForce = kUnbounded);
+  Status setFixedPointTarget(FixedPointId id, const Vec3& target);  // kinematic target
+  Vec3 fixedPointImpulse(FixedPointId id) const;                    // N·s on the node, last step
+  Result<AnchorId> addAnchor(const AnchorDesc& desc);
+  AnchorState anchorState(AnchorId id) const;
+
+  // Stepping. A step that produces a non-finite state returns an error naming the body and
+  // node (or rigid body) and leaves the world in that state for inspection.
+  Status step(double timeStep);
+  const StepReport& lastReport() const;
+  double time() const;  // simulated seconds so far
+  int64_t stepCount() const;
+
+  // Momentum of every dynamic thing in the world (deformable nodes with finite mass and dynamic
+  // rigid bodies), for checking conservation.
+  Vec3 totalLinearMomentum() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> m_impl;
+};
+
+}  // namespace tandem

@@ -1,0 +1,308 @@
+#include "bullet/bullet_world.h"
+
+#include <btBulletDynamicsCommon.h>
+#include <BulletCollision/CollisionDispatch/btSimulationIslandManager.h>
+
+#include <cassert>
+#include <vector>
+
+namespace tandem::bullet {
+namespace {
+
+btVector3 toBt(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
+Vec3 fromBt(const btVector3& v) { return {v.x(), v.y(), v.z()}; }
+btQuaternion toBt(const Quat& q) { return {q.x(), q.y(), q.z(), q.w()}; }
+Quat fromBt(const btQuaternion& q) { return Quat(q.w(), q.x(), q.y(), q.z()); }
+Mat3 fromBt(const btMatrix3x3& m) {
+  Mat3 out;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) out(r, c) = m[r][c];
+  return out;
+}
+
+// Bullet's sequential-impulse solver with Tandem's sweep after each of its iterations.
+// Bullet's own loop may stop early once its residual is small; this one always runs the
+// requested count, because Tandem's rows need every sweep even when Bullet has nothing to do.
+class CoupledSolver final : public btSequentialImpulseConstraintSolver {
+ public:
+  SolverHooks* hooks = nullptr;
+
+  btAlignedObjectArray<btSolverBody>& solverBodies() { return m_tmpSolverBodyPool; }
+
+ protected:
+  btScalar solveGroupCacheFriendlySetup(btCollisionObject** bodies, int numBodies, btPersistentManifold** manifolds,
+                                        int numManifolds, btTypedConstraint** constraints, int numConstraints,
+                                        const btContactSolverInfo& info, btIDebugDraw* debugDrawer) override {
+    const btScalar result = btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySetup(
+        bodies, numBodies, manifolds, numManifolds, constraints, numConstraints, info, debugDrawer);
+    if (hooks) hooks->afterSetup();
+    return result;
+  }
+
+  btScalar solveGroupCacheFriendlyIterations(btCollisionObject** bodies, int numBodies,
+                                             btPersistentManifold** manifolds, int numManifolds,
+                                             btTypedConstraint** constraints, int numConstraints,
+                                             const btContactSolverInfo& info, btIDebugDraw* debugDrawer) override {
+    solveGroupCacheFriendlySplitImpulseIterations(bodies, numBodies, manifolds, numManifolds, constraints,
+                                                  numConstraints, info, debugDrawer);
+    for (int iteration = 0; iteration < info.m_numIterations; ++iteration) {
+      m_leastSquaresResidual = solveSingleIteration(iteration, bodies, numBodies, manifolds, numManifolds,
+                                                    constraints, numConstraints, info, debugDrawer);
+      if (hooks) hooks->afterIteration(iteration);
+    }
+    return 0;
+  }
+};
+
+// Exposes the protected stages of Bullet's step so Tandem can call them in its own order.
+class SteppedDynamicsWorld final : public btDiscreteDynamicsWorld {
+ public:
+  using btDiscreteDynamicsWorld::btDiscreteDynamicsWorld;
+
+  void predict(btScalar h) {
+    saveKinematicState(h);
+    applyGravity();
+    predictUnconstraintMotion(h);
+    getDispatchInfo().m_timeStep = h;
+    getDispatchInfo().m_stepCount = 0;
+    getDispatchInfo().m_debugDraw = getDebugDrawer();
+    createPredictiveContacts(h);
+  }
+
+  void detect() {
+    performDiscreteCollisionDetection();
+    calculateSimulationIslands();
+  }
+
+  // One solver call over every body, manifold and joint: Tandem's sweep then runs once per
+  // iteration for the whole scene. Islands are still built so that sleeping works.
+  void solveAll(btScalar h) {
+    getSolverInfo().m_timeStep = h;
+    m_islandManager->buildIslands(getDispatcher(), getCollisionWorld());
+    m_enabledJoints.clear();
+    for (int i = 0; i < getNumConstraints(); ++i)
+      if (getConstraint(i)->isEnabled()) m_enabledJoints.push_back(getConstraint(i));
+    btCollisionObjectArray& objects = getCollisionObjectArray();
+    const int manifoldCount = getDispatcher()->getNumManifolds();
+    m_constraintSolver->prepareSolve(objects.size(), manifoldCount);
+    m_constraintSolver->solveGroup(objects.size() ? &objects[0] : nullptr, objects.size(),
+                                   manifoldCount ? getDispatcher()->getInternalManifoldPointer() : nullptr,
+                                   manifoldCount, m_enabledJoints.empty() ? nullptr : m_enabledJoints.data(),
+                                   static_cast<int>(m_enabledJoints.size()), getSolverInfo(), getDebugDrawer(),
+                                   getDispatcher());
+    m_constraintSolver->allSolved(getSolverInfo(), getDebugDrawer());
+  }
+
+  void finish(btScalar h) {
+    integrateTransforms(h);
+    updateActions(h);
+    updateActivationState(h);
+    clearForces();
+    synchronizeMotionStates();
+  }
+
+ private:
+  std::vector<btTypedConstraint*> m_enabledJoints;
+};
+
+}  // namespace
+
+struct BulletWorld::Impl {
+  btDefaultCollisionConfiguration configuration;
+  btCollisionDispatcher dispatcher{&configuration};
+  btDbvtBroadphase broadphase;
+  CoupledSolver solver;
+  SteppedDynamicsWorld world{&dispatcher, &broadphase, &solver, &configuration};
+
+  std::vector<std::unique_ptr<btCollisionShape>> shapes;
+  std::vector<std::unique_ptr<btDefaultMotionState>> motionStates;
+  std::vector<std::unique_ptr<btRigidBody>> bodies;
+  std::vector<std::unique_ptr<btTypedConstraint>> joints;
+
+  ~Impl() {
+    for (int i = world.getNumConstraints() - 1; i >= 0; --i) world.removeConstraint(world.getConstraint(i));
+    for (auto& body : bodies) world.removeRigidBody(body.get());
+  }
+
+  const btSolverBody* solverBody(int body) const {
+    const int id = bodies[body]->getCompanionId();
+    if (id < 0) return nullptr;  // static: Bullet shares one fixed solver body and sets no id
+    return &const_cast<CoupledSolver&>(solver).solverBodies()[id];
+  }
+};
+
+BulletWorld::BulletWorld(const Vec3& gravity) : m_impl(std::make_unique<Impl>()) {
+  m_impl->world.setGravity(toBt(gravity));
+  m_impl->world.getSimulationIslandManager()->setSplitIslands(false);
+}
+
+BulletWorld::~BulletWorld() = default;
+
+void BulletWorld::setGravity(const Vec3& gravity) { m_impl->world.setGravity(toBt(gravity)); }
+
+int BulletWorld::addRigidBody(const RigidBodyDesc& desc) {
+  std::unique_ptr<btCollisionShape> shape;
+  const RigidShape& s = desc.shape;
+  switch (s.type) {
+    case ShapeType::Box: shape = std::make_unique<btBoxShape>(toBt(s.halfExtents)); break;
+    case ShapeType::Sphere: shape = std::make_unique<btSphereShape>(s.radius); break;
+    case ShapeType::Cylinder:
+      shape = std::make_unique<btCylinderShape>(btVector3(s.radius, s.halfHeight, s.radius));
+      break;
+    case ShapeType::Capsule: shape = std::make_unique<btCapsuleShape>(s.radius, 2.0 * s.halfHeight); break;
+    case ShapeType::Plane:
+      shape = std::make_unique<btStaticPlaneShape>(toBt(s.planeNormal.normalized()), s.planeOffset);
+      break;
+  }
+  const bool dynamic = desc.motion == MotionType::Dynamic;
+  const double mass = dynamic ? desc.mass : 0.0;
+  btVector3 inertia(0, 0, 0);
+  if (dynamic) shape->calculateLocalInertia(mass, inertia);
+
+  btTransform pose(toBt(desc.orientation.normalized()), toBt(desc.position));
+  auto motionState = std::make_unique<btDefaultMotionState>(pose);
+  btRigidBody::btRigidBodyConstructionInfo info(mass, motionState.get(), shape.get(), inertia);
+  info.m_friction = desc.friction;
+  info.m_restitution = desc.restitution;
+  auto body = std::make_unique<btRigidBody>(info);
+  if (desc.motion == MotionType::Kinematic) {
+    body->setCollisionFlags(body->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
+    body->setActivationState(DISABLE_DEACTIVATION);
+  }
+  if (dynamic) {
+    body->setLinearVelocity(toBt(desc.linearVelocity));
+    body->setAngularVelocity(toBt(desc.angularVelocity));
+  }
+  m_impl->world.addRigidBody(body.get());
+
+  m_impl->shapes.push_back(std::move(shape));
+  m_impl->motionStates.push_back(std::move(motionState));
+  m_impl->bodies.push_back(std::move(body));
+  return static_cast<int>(m_impl->bodies.size()) - 1;
+}
+
+int BulletWorld::addHinge(const HingeDesc& desc) {
+  btRigidBody& a = *m_impl->bodies[desc.bodyA.index];
+  const btVector3 pivot = toBt(desc.pivot);
+  const btVector3 axis = toBt(desc.axis.normalized());
+  const btTransform aInverse = a.getCenterOfMassTransform().inverse();
+  std::unique_ptr<btHingeConstraint> hinge;
+  if (desc.bodyB) {
+    btRigidBody& b = *m_impl->bodies[desc.bodyB->index];
+    const btTransform bInverse = b.getCenterOfMassTransform().inverse();
+    hinge = std::make_unique<btHingeConstraint>(a, b, aInverse * pivot, bInverse * pivot,
+                                                aInverse.getBasis() * axis, bInverse.getBasis() * axis);
+  } else {
+    hinge = std::make_unique<btHingeConstraint>(a, aInverse * pivot, aInverse.getBasis() * axis);
+  }
+  m_impl->world.addConstraint(hinge.get(), true);
+  m_impl->joints.push_back(std::move(hinge));
+  return static_cast<int>(m_impl->joints.size()) - 1;
+}
+
+int BulletWorld::rigidBodyCount() const { return static_cast<int>(m_impl->bodies.size()); }
+
+void BulletWorld::predictRigidMotion(double timeStep) { m_impl->world.predict(timeStep); }
+
+void BulletWorld::detectCollisions(double) { m_impl->world.detect(); }
+
+void BulletWorld::solve(double timeStep, int iterations, SolverHooks& hooks) {
+  m_impl->world.getSolverInfo().m_numIterations = iterations;
+  m_impl->solver.hooks = &hooks;
+  m_impl->world.solveAll(timeStep);
+  m_impl->solver.hooks = nullptr;
+}
+
+void BulletWorld::integrate(double timeStep) { m_impl->world.finish(timeStep); }
+
+void BulletWorld::loadRigidProperties(std::span<RigidSolverState> states) const {
+  assert(states.size() == m_impl->bodies.size());
+  for (size_t i = 0; i < states.size(); ++i) {
+    RigidSolverState& state = states[i];
+    const btRigidBody& body = *m_impl->bodies[i];
+    const bool movable = body.getInvMass() > 0 && body.isActive();
+    state.inverseMass = movable ? body.getInvMass() : 0.0;
+    state.inverseInertia = movable ? fromBt(body.getInvInertiaTensorWorld()) : Mat3::Zero();
+    state.centerOfMass = fromBt(body.getCenterOfMassPosition());
+    state.orientation = fromBt(body.getOrientation());
+    state.linearVelocity = fromBt(body.getLinearVelocity());
+    state.angularVelocity = fromBt(body.getAngularVelocity());
+    state.impulse.setZero();
+    state.angularImpulse.setZero();
+  }
+}
+
+void BulletWorld::loadRigidVelocities(std::span<RigidSolverState> states) const {
+  assert(states.size() == m_impl->bodies.size());
+  for (size_t i = 0; i < states.size(); ++i) {
+    RigidSolverState& state = states[i];
+    const btSolverBody* solverBody = m_impl->solverBody(static_cast<int>(i));
+    if (solverBody && solverBody->m_originalBody) {
+      state.linearVelocity = fromBt(solverBody->m_linearVelocity + solverBody->m_externalForceImpulse +
+                                    solverBody->m_deltaLinearVelocity);
+      state.angularVelocity = fromBt(solverBody->m_angularVelocity + solverBody->m_externalTorqueImpulse +
+                                     solverBody->m_deltaAngularVelocity);
+    } else {
+      state.linearVelocity.setZero();
+      state.angularVelocity.setZero();
+    }
+    state.loadedLinearVelocity = state.linearVelocity;
+    state.loadedAngularVelocity = state.angularVelocity;
+  }
+}
+
+void BulletWorld::storeRigidVelocities(std::span<RigidSolverState> states) {
+  for (size_t i = 0; i < states.size(); ++i) {
+    RigidSolverState& state = states[i];
+    if (state.inverseMass == 0.0) continue;
+    btSolverBody& solverBody = m_impl->solver.solverBodies()[m_impl->bodies[i]->getCompanionId()];
+    solverBody.m_deltaLinearVelocity += toBt(state.linearVelocity - state.loadedLinearVelocity);
+    solverBody.m_deltaAngularVelocity += toBt(state.angularVelocity - state.loadedAngularVelocity);
+    state.loadedLinearVelocity = state.linearVelocity;
+    state.loadedAngularVelocity = state.angularVelocity;
+  }
+}
+
+Vec3 BulletWorld::position(int body) const { return fromBt(m_impl->bodies[body]->getCenterOfMassPosition()); }
+Quat BulletWorld::orientation(int body) const { return fromBt(m_impl->bodies[body]->getOrientation()); }
+Vec3 BulletWorld::linearVelocity(int body) const { return fromBt(m_impl->bodies[body]->getLinearVelocity()); }
+Vec3 BulletWorld::angularVelocity(int body) const { return fromBt(m_impl->bodies[body]->getAngularVelocity()); }
+double BulletWorld::mass(int body) const {
+  const double inverse = m_impl->bodies[body]->getInvMass();
+  return inverse > 0 ? 1.0 / inverse : 0.0;
+}
+bool BulletWorld::isAwake(int body) const { return m_impl->bodies[body]->isActive(); }
+bool BulletWorld::isDynamic(int body) const { return m_impl->bodies[body]->getInvMass() > 0; }
+void BulletWorld::wake(int body) { m_impl->bodies[body]->activate(true); }
+void BulletWorld::putToSleep(int body) {
+  btRigidBody& b = *m_impl->bodies[body];
+  b.setLinearVelocity(btVector3(0, 0, 0));
+  b.setAngularVelocity(btVector3(0, 0, 0));
+  b.setActivationState(ISLAND_SLEEPING);
+}
+void BulletWorld::setKinematicTarget(int body, const Vec3& position, const Quat& orientation) {
+  m_impl->motionStates[body]->setWorldTransform(btTransform(toBt(orientation.normalized()), toBt(position)));
+}
+
+double BulletWorld::contactImpulse(int bodyA, int bodyB) const {
+  const btCollisionObject* a = m_impl->bodies[bodyA].get();
+  const btCollisionObject* b = m_impl->bodies[bodyB].get();
+  double total = 0.0;
+  btDispatcher* dispatcher = m_impl->world.getDispatcher();
+  for (int m = 0; m < dispatcher->getNumManifolds(); ++m) {
+    const btPersistentManifold* manifold = dispatcher->getManifoldByIndexInternal(m);
+    const bool match = (manifold->getBody0() == a && manifold->getBody1() == b) ||
+                       (manifold->getBody0() == b && manifold->getBody1() == a);
+    if (!match) continue;
+    for (int p = 0; p < manifold->getNumContacts(); ++p) total += manifold->getContactPoint(p).m_appliedImpulse;
+  }
+  return total;
+}
+
+int BulletWorld::manifoldCount() const { return m_impl->world.getDispatcher()->getNumManifolds(); }
+int BulletWorld::jointCount() const { return m_impl->world.getNumConstraints(); }
+double BulletWorld::sleepingThreshold(int body) const {
+  return m_impl->bodies[body]->getLinearSleepingThreshold();
+}
+
+}  // namespace tandem::bullet

@@ -1,0 +1,75 @@
+// The one module that knows Bullet's dynamics world and constraint solver internals.
+//
+// Tandem drives Bullet stage by stage (World::step), and runs its own sweep inside Bullet's
+// sequential-impulse solve: after Bullet's setup (warm start) and after each of Bullet's
+// iterations (one PGS sweep over Tandem's rows), before Bullet writes velocities back.
+// During the solve, Tandem's rows read and write the same btSolverBody velocities Bullet
+// iterates on, through loadRigidStates/storeRigidStates.
+#pragma once
+
+#include <tandem/world.h>
+
+#include "solver/solver_state.h"
+
+#include <memory>
+#include <span>
+
+namespace tandem::bullet {
+
+class SolverHooks {
+ public:
+  virtual ~SolverHooks() = default;
+  virtual void afterSetup() = 0;                 // solver bodies exist: warm start Tandem's rows
+  virtual void afterIteration(int iteration) = 0;  // one of Bullet's iterations is done
+};
+
+class BulletWorld {
+ public:
+  explicit BulletWorld(const Vec3& gravity);
+  ~BulletWorld();
+  BulletWorld(const BulletWorld&) = delete;
+  BulletWorld& operator=(const BulletWorld&) = delete;
+
+  void setGravity(const Vec3& gravity);
+
+  // The descriptor is validated by the caller. Returns the body's index.
+  int addRigidBody(const RigidBodyDesc& desc);
+  int addHinge(const HingeDesc& desc);
+  int rigidBodyCount() const;
+
+  // Stages of a step, in order.
+  void predictRigidMotion(double timeStep);
+  void detectCollisions(double timeStep);
+  void solve(double timeStep, int iterations, SolverHooks& hooks);
+  void integrate(double timeStep);
+
+  // Pose, mass and world inertia of every body, and zeroed impulse totals. Static, kinematic
+  // and sleeping bodies load as immovable (zero inverse mass and inertia).
+  void loadRigidProperties(std::span<RigidSolverState> states) const;
+  // During the solve only: solver-body velocities in and out of Tandem's rigid state.
+  void loadRigidVelocities(std::span<RigidSolverState> states) const;
+  void storeRigidVelocities(std::span<RigidSolverState> states);
+
+  // Queries
+  Vec3 position(int body) const;
+  Quat orientation(int body) const;
+  Vec3 linearVelocity(int body) const;
+  Vec3 angularVelocity(int body) const;
+  double mass(int body) const;
+  bool isAwake(int body) const;
+  bool isDynamic(int body) const;
+  void wake(int body);
+  void putToSleep(int body);
+  void setKinematicTarget(int body, const Vec3& position, const Quat& orientation);
+  double contactImpulse(int bodyA, int bodyB) const;
+  int manifoldCount() const;
+  int jointCount() const;
+  // The body's linear sleeping threshold (m/s): slower than this, Bullet lets it sleep.
+  double sleepingThreshold(int body) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> m_impl;
+};
+
+}  // namespace tandem::bullet

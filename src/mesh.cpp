@@ -1,0 +1,238 @@
+#include <tandem/mesh.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+#include <string>
+
+namespace tandem {
+namespace {
+
+std::string str(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%g", value);
+  return buffer;
+}
+
+template <size_t N>
+Status checkIndices(const std::vector<std::array<int32_t, N>>& elements, int32_t nodeCount, const char* kind) {
+  for (size_t e = 0; e < elements.size(); ++e) {
+    for (size_t k = 0; k < N; ++k) {
+      const int32_t index = elements[e][k];
+      if (index < 0 || index >= nodeCount)
+        return Error{std::string(kind) + " " + std::to_string(e) + " refers to node " + std::to_string(index) +
+                     ", but the mesh has " + std::to_string(nodeCount) + " nodes"};
+      for (size_t other = 0; other < k; ++other)
+        if (elements[e][other] == index)
+          return Error{std::string(kind) + " " + std::to_string(e) + " uses node " + std::to_string(index) + " twice"};
+    }
+  }
+  return {};
+}
+
+Status checkCounts(int count, int minimum, const char* what, const char* generator) {
+  if (count < minimum)
+    return Error{std::string(generator) + ": " + what + " must be >= " + std::to_string(minimum) + ", got " +
+                 std::to_string(count)};
+  return {};
+}
+
+Status checkTotalMass(double totalMass, const char* generator) {
+  if (!std::isfinite(totalMass) || totalMass <= 0)
+    return Error{std::string(generator) + ": total mass must be a positive number of kilograms, got " + str(totalMass)};
+  return {};
+}
+
+Status checkPoint(const Vec3& p, const char* what, const char* generator) {
+  if (!p.allFinite()) return Error{std::string(generator) + ": " + what + " is not finite"};
+  return {};
+}
+
+void spreadMass(DeformableMesh& mesh, double totalMass) {
+  mesh.masses.assign(mesh.positions.size(), totalMass / static_cast<double>(mesh.positions.size()));
+}
+
+void addUniqueEdges(DeformableMesh& mesh, const std::vector<std::array<int32_t, 2>>& candidates) {
+  std::set<std::pair<int32_t, int32_t>> seen;
+  for (const auto& e : mesh.edges) seen.insert({std::min(e[0], e[1]), std::max(e[0], e[1])});
+  for (const auto& e : candidates) {
+    const std::pair<int32_t, int32_t> key{std::min(e[0], e[1]), std::max(e[0], e[1])};
+    if (seen.insert(key).second) mesh.edges.push_back({key.first, key.second});
+  }
+}
+
+}  // namespace
+
+Status validateMesh(const DeformableMesh& mesh) {
+  const int32_t n = mesh.nodeCount();
+  if (n == 0) return Error{"mesh has no nodes"};
+  if (mesh.masses.size() != mesh.positions.size())
+    return Error{"mesh has " + std::to_string(n) + " positions but " + std::to_string(mesh.masses.size()) +
+                 " masses"};
+  for (int32_t i = 0; i < n; ++i) {
+    if (!mesh.positions[i].allFinite()) return Error{"node " + std::to_string(i) + " has a non-finite position"};
+    const double m = mesh.masses[i];
+    if (!std::isfinite(m) || m <= 0)
+      return Error{"node " + std::to_string(i) + " has mass " + str(m) + " kg; masses must be positive and finite"};
+  }
+  if (Status s = checkIndices(mesh.edges, n, "edge"); !s) return s;
+  if (Status s = checkIndices(mesh.triangles, n, "triangle"); !s) return s;
+  if (Status s = checkIndices(mesh.tetrahedra, n, "tetrahedron"); !s) return s;
+  const auto& x = mesh.positions;
+  for (size_t e = 0; e < mesh.edges.size(); ++e) {
+    const double length = (x[mesh.edges[e][1]] - x[mesh.edges[e][0]]).norm();
+    if (length < 1e-9) return Error{"edge " + std::to_string(e) + " has zero length"};
+  }
+  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const auto& f = mesh.triangles[t];
+    const double twiceArea = (x[f[1]] - x[f[0]]).cross(x[f[2]] - x[f[0]]).norm();
+    const double scale = std::max({(x[f[1]] - x[f[0]]).squaredNorm(), (x[f[2]] - x[f[0]]).squaredNorm(), 1e-300});
+    if (twiceArea < 1e-9 * scale) return Error{"triangle " + std::to_string(t) + " is degenerate (zero area)"};
+  }
+  for (size_t t = 0; t < mesh.tetrahedra.size(); ++t) {
+    const auto& k = mesh.tetrahedra[t];
+    const double sixVolume = (x[k[1]] - x[k[0]]).dot((x[k[2]] - x[k[0]]).cross(x[k[3]] - x[k[0]]));
+    const double edge = (x[k[1]] - x[k[0]]).norm();
+    if (sixVolume <= 1e-9 * edge * edge * edge)
+      return Error{"tetrahedron " + std::to_string(t) +
+                   (sixVolume < 0 ? " is inverted (negative volume)" : " is degenerate (zero volume)")};
+  }
+  return {};
+}
+
+Result<DeformableMesh> makeRope(const Vec3& start, const Vec3& end, int nodeCount, double totalMass) {
+  if (Status s = checkCounts(nodeCount, 2, "node count", "rope"); !s) return Error{s.message()};
+  if (Status s = checkTotalMass(totalMass, "rope"); !s) return Error{s.message()};
+  if (Status s = checkPoint(start, "start", "rope"); !s) return Error{s.message()};
+  if (Status s = checkPoint(end, "end", "rope"); !s) return Error{s.message()};
+  if ((end - start).norm() < 1e-9) return Error{"rope: start and end coincide (zero length)"};
+  DeformableMesh mesh;
+  for (int i = 0; i < nodeCount; ++i)
+    mesh.positions.push_back(start + (end - start) * (static_cast<double>(i) / (nodeCount - 1)));
+  for (int i = 0; i + 1 < nodeCount; ++i) mesh.edges.push_back({i, i + 1});
+  spreadMass(mesh, totalMass);
+  return mesh;
+}
+
+Result<DeformableMesh> makeClothGrid(const Vec3& corner, const Vec3& sideU, const Vec3& sideV, int columns, int rows,
+                                     double totalMass) {
+  if (Status s = checkCounts(columns, 2, "columns", "cloth grid"); !s) return Error{s.message()};
+  if (Status s = checkCounts(rows, 2, "rows", "cloth grid"); !s) return Error{s.message()};
+  if (Status s = checkTotalMass(totalMass, "cloth grid"); !s) return Error{s.message()};
+  if (!corner.allFinite() || !sideU.allFinite() || !sideV.allFinite())
+    return Error{"cloth grid: corner and sides must be finite"};
+  if (sideU.cross(sideV).norm() < 1e-12 * std::max(1.0, sideU.squaredNorm() + sideV.squaredNorm()))
+    return Error{"cloth grid: the two sides are parallel or zero (the cloth has no area)"};
+  DeformableMesh mesh;
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < columns; ++c)
+      mesh.positions.push_back(corner + sideU * (static_cast<double>(c) / (columns - 1)) +
+                               sideV * (static_cast<double>(r) / (rows - 1)));
+  auto id = [columns](int c, int r) { return static_cast<int32_t>(r * columns + c); };
+  std::vector<std::array<int32_t, 2>> edges;
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < columns; ++c) {
+      if (c + 1 < columns) edges.push_back({id(c, r), id(c + 1, r)});
+      if (r + 1 < rows) edges.push_back({id(c, r), id(c, r + 1)});
+      if (c + 1 < columns && r + 1 < rows) {
+        // Alternate the diagonal so the cloth has no preferred shear direction.
+        if ((c + r) % 2 == 0) {
+          mesh.triangles.push_back({id(c, r), id(c + 1, r), id(c + 1, r + 1)});
+          mesh.triangles.push_back({id(c, r), id(c + 1, r + 1), id(c, r + 1)});
+          edges.push_back({id(c, r), id(c + 1, r + 1)});
+        } else {
+          mesh.triangles.push_back({id(c, r), id(c + 1, r), id(c, r + 1)});
+          mesh.triangles.push_back({id(c + 1, r), id(c + 1, r + 1), id(c, r + 1)});
+          edges.push_back({id(c + 1, r), id(c, r + 1)});
+        }
+      }
+    }
+  mesh.edges = std::move(edges);
+  spreadMass(mesh, totalMass);
+  return mesh;
+}
+
+Result<DeformableMesh> makeTetBox(const Vec3& minCorner, const Vec3& maxCorner, int cellsX, int cellsY, int cellsZ,
+                                  double totalMass) {
+  if (Status s = checkCounts(cellsX, 1, "cells along x", "tet box"); !s) return Error{s.message()};
+  if (Status s = checkCounts(cellsY, 1, "cells along y", "tet box"); !s) return Error{s.message()};
+  if (Status s = checkCounts(cellsZ, 1, "cells along z", "tet box"); !s) return Error{s.message()};
+  if (Status s = checkTotalMass(totalMass, "tet box"); !s) return Error{s.message()};
+  if (!minCorner.allFinite() || !maxCorner.allFinite()) return Error{"tet box: corners must be finite"};
+  if ((maxCorner - minCorner).minCoeff() <= 0)
+    return Error{"tet box: max corner must exceed min corner along every axis"};
+  const int nx = cellsX + 1, ny = cellsY + 1, nz = cellsZ + 1;
+  DeformableMesh mesh;
+  const Vec3 size = maxCorner - minCorner;
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i)
+        mesh.positions.push_back(minCorner + Vec3(size.x() * i / cellsX, size.y() * j / cellsY, size.z() * k / cellsZ));
+  auto id = [&](int i, int j, int k) { return static_cast<int32_t>((k * ny + j) * nx + i); };
+  for (int k = 0; k < cellsZ; ++k)
+    for (int j = 0; j < cellsY; ++j)
+      for (int i = 0; i < cellsX; ++i) {
+        // Corners v[abc] = (i+a, j+b, k+c). Mirror the five-tet split in alternate cells so
+        // faces shared by neighbouring cells are cut by the same diagonal.
+        int32_t v[2][2][2];
+        for (int a = 0; a < 2; ++a)
+          for (int b = 0; b < 2; ++b)
+            for (int c = 0; c < 2; ++c) v[a][b][c] = id(i + a, j + b, k + c);
+        const bool flip = (i + j + k) % 2 == 1;
+        auto corner = [&](int a, int b, int c) { return flip ? v[1 - a][b][c] : v[a][b][c]; };
+        const std::array<std::array<int32_t, 4>, 5> tets{{
+            {corner(0, 0, 0), corner(1, 0, 0), corner(0, 1, 0), corner(0, 0, 1)},
+            {corner(1, 1, 0), corner(0, 1, 0), corner(1, 0, 0), corner(1, 1, 1)},
+            {corner(1, 0, 1), corner(0, 0, 1), corner(1, 1, 1), corner(1, 0, 0)},
+            {corner(0, 1, 1), corner(1, 1, 1), corner(0, 0, 1), corner(0, 1, 0)},
+            {corner(1, 0, 0), corner(0, 1, 0), corner(0, 0, 1), corner(1, 1, 1)},
+        }};
+        for (auto tet : tets) {
+          const auto& x = mesh.positions;
+          if ((x[tet[1]] - x[tet[0]]).dot((x[tet[2]] - x[tet[0]]).cross(x[tet[3]] - x[tet[0]])) < 0)
+            std::swap(tet[2], tet[3]);
+          mesh.tetrahedra.push_back(tet);
+        }
+      }
+  // Edges of every tet; boundary faces are those used by exactly one tet, oriented outwards.
+  std::vector<std::array<int32_t, 2>> edges;
+  std::map<std::array<int32_t, 3>, std::pair<int, std::array<int32_t, 3>>> faces;
+  for (const auto& t : mesh.tetrahedra) {
+    for (int a = 0; a < 4; ++a)
+      for (int b = a + 1; b < 4; ++b) edges.push_back({t[a], t[b]});
+    // Faces opposite each vertex, wound so the normal points away from that vertex.
+    const std::array<std::array<int32_t, 3>, 4> tetFaces{
+        {{t[1], t[3], t[2]}, {t[0], t[2], t[3]}, {t[0], t[3], t[1]}, {t[0], t[1], t[2]}}};
+    for (const auto& f : tetFaces) {
+      std::array<int32_t, 3> key = f;
+      std::sort(key.begin(), key.end());
+      auto& entry = faces[key];
+      ++entry.first;
+      entry.second = f;
+    }
+  }
+  addUniqueEdges(mesh, edges);
+  for (const auto& [key, entry] : faces)
+    if (entry.first == 1) mesh.triangles.push_back(entry.second);
+  spreadMass(mesh, totalMass);
+  return mesh;
+}
+
+std::vector<EdgeHinge> findEdgeHinges(const std::vector<std::array<int32_t, 3>>& triangles) {
+  // For each directed edge (a, b) of a triangle, the opposite vertex. The triangle on the other
+  // side of the edge holds it as (b, a).
+  std::map<std::pair<int32_t, int32_t>, int32_t> opposite;
+  for (const auto& t : triangles)
+    for (int k = 0; k < 3; ++k) opposite[{t[k], t[(k + 1) % 3]}] = t[(k + 2) % 3];
+  std::vector<EdgeHinge> hinges;
+  for (const auto& [edge, left] : opposite) {
+    if (edge.first > edge.second) continue;  // each undirected edge once
+    auto other = opposite.find({edge.second, edge.first});
+    if (other == opposite.end()) continue;  // boundary edge
+    hinges.push_back({edge.first, edge.second, left, other->second});
+  }
+  return hinges;
+}
+
+}  // namespace tandem

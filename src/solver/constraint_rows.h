@@ -1,0 +1,67 @@
+// All of Tandem's rows, in contiguous arrays by type, and the three things the solver does
+// with them: prepare (Jacobians, effective masses, biases, bounds), warm start, and sweep.
+#pragma once
+
+#include <tandem/report.h>
+
+#include "constraints/anchor.h"
+#include "constraints/bending.h"
+#include "constraints/fixed_point.h"
+#include "constraints/inextensibility.h"
+#include "solver/solver_state.h"
+
+#include <vector>
+
+namespace tandem {
+
+struct ConstraintRows {
+  std::vector<FixedPointRow> fixedPoints;
+  std::vector<AnchorRow> anchors;
+  std::vector<InextensibilityRow> inextensibility;
+  std::vector<BendingRow> bending;
+
+  // Scalar rows per type (a fixed point or an anchor is three).
+  std::array<int, static_cast<size_t>(RowType::Count)> countRows() const {
+    return {3 * static_cast<int>(fixedPoints.size()), 3 * static_cast<int>(anchors.size()),
+            static_cast<int>(inextensibility.size()), static_cast<int>(bending.size())};
+  }
+
+  void prepare(const NodeArrays& nodes, std::span<const RigidSolverState> rigid, double timeStep, double biasRate) {
+    for (FixedPointRow& row : fixedPoints) prepareFixedPoint(row, nodes, timeStep, biasRate);
+    for (AnchorRow& row : anchors) prepareAnchor(row, nodes, rigid[row.body], timeStep, biasRate);
+    for (InextensibilityRow& row : inextensibility) prepareInextensibility(row, nodes, timeStep, biasRate);
+    for (BendingRow& row : bending) prepareBending(row, nodes, timeStep, biasRate);
+  }
+
+  // Rows in a direct block are not warm started: the block is exact in one sweep, and its
+  // response to an impulse (H⁻¹ Jᵀ) is not the M⁻¹ Jᵀ a warm start would apply.
+  void warmStart(SolverContext& ctx) const {
+    for (const FixedPointRow& row : fixedPoints)
+      if (!row.inDirectBlock) warmStartFixedPoint(row, ctx);
+    for (const AnchorRow& row : anchors)
+      if (!row.inDirectBlock) warmStartAnchor(row, ctx);
+    for (const InextensibilityRow& row : inextensibility)
+      if (!row.inDirectBlock) warmStartInextensibility(row, ctx);
+    for (const BendingRow& row : bending) warmStartBending(row, ctx);
+  }
+
+  void clearImpulses() {
+    for (FixedPointRow& row : fixedPoints) row.lambda.setZero();
+    for (AnchorRow& row : anchors) row.lambda.setZero();
+    for (InextensibilityRow& row : inextensibility) row.lambda = 0.0;
+    for (BendingRow& row : bending) row.lambda = 0.0;
+  }
+
+  // One projected Gauss-Seidel sweep over every row not in a direct block.
+  void sweep(SolverContext& ctx, SweepStats& stats) {
+    for (FixedPointRow& row : fixedPoints)
+      if (!row.inDirectBlock) solveFixedPoint(row, ctx, stats);
+    for (InextensibilityRow& row : inextensibility)
+      if (!row.inDirectBlock) solveInextensibility(row, ctx, stats);
+    for (BendingRow& row : bending) solveBending(row, ctx, stats);
+    for (AnchorRow& row : anchors)
+      if (!row.inDirectBlock) solveAnchor(row, ctx, stats);
+  }
+};
+
+}  // namespace tandem

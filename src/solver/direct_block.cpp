@@ -1,0 +1,243 @@
+#include "solver/direct_block.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+
+namespace tandem {
+namespace {
+
+// E = ε · diag(J M⁻¹ Jᵀ): small enough not to soften the rows measurably, large enough that
+// redundant rows with slightly inconsistent errors get bounded impulses.
+constexpr double kRelativeCompliance = 1e-4;
+
+bool isUnbounded(double maxForce) { return std::isinf(maxForce); }
+
+}  // namespace
+
+void DirectBlock::collectRows(const ConstraintRows& rows) {
+  m_rows.clear();
+  m_bodies.clear();
+  auto ownsNode = [this](int32_t node) { return node >= m_firstNode && node < m_firstNode + m_nodeCount; };
+  for (size_t i = 0; i < rows.fixedPoints.size(); ++i) {
+    const FixedPointRow& row = rows.fixedPoints[i];
+    if (!ownsNode(row.node) || !isUnbounded(row.maxForce)) continue;
+    for (int32_t k = 0; k < 3; ++k) m_rows.push_back({RowType::FixedPoint, static_cast<int32_t>(i), k});
+  }
+  for (size_t i = 0; i < rows.anchors.size(); ++i) {
+    const AnchorRow& row = rows.anchors[i];
+    if (!ownsNode(row.node[0]) || !isUnbounded(row.maxForce)) continue;
+    if (std::find(m_bodies.begin(), m_bodies.end(), row.body) == m_bodies.end()) m_bodies.push_back(row.body);
+    for (int32_t k = 0; k < 3; ++k) m_rows.push_back({RowType::Anchor, static_cast<int32_t>(i), k});
+  }
+  for (size_t i = 0; i < rows.inextensibility.size(); ++i) {
+    const InextensibilityRow& row = rows.inextensibility[i];
+    const bool bilateral = std::isinf(row.lambdaMin) && std::isinf(row.lambdaMax) && row.lambdaMin < 0;
+    if (!ownsNode(row.node[0]) || !bilateral) continue;
+    m_rows.push_back({RowType::Inextensibility, static_cast<int32_t>(i), 0});
+  }
+}
+
+void DirectBlock::claimRows(ConstraintRows& rows) const {
+  for (const BlockRowRef& ref : m_rows) {
+    switch (ref.type) {
+      case RowType::FixedPoint: rows.fixedPoints[ref.index].inDirectBlock = true; break;
+      case RowType::Anchor: rows.anchors[ref.index].inDirectBlock = true; break;
+      case RowType::Inextensibility: rows.inextensibility[ref.index].inDirectBlock = true; break;
+      default: break;
+    }
+  }
+}
+
+void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
+                          std::span<const RigidSolverState> rigid, double timeStep) {
+  // Degrees of freedom: free nodes, then dynamic awake bodies.
+  m_nodeDof.assign(m_nodeCount, -1);
+  m_dofCount = 0;
+  for (int32_t n = 0; n < m_nodeCount; ++n)
+    if (nodes.inverseMass[m_firstNode + n] > 0) {
+      m_nodeDof[n] = m_dofCount;
+      m_dofCount += 3;
+    }
+  m_bodyDof.assign(m_bodies.size(), -1);
+  for (size_t b = 0; b < m_bodies.size(); ++b)
+    if (rigid[m_bodies[b]].inverseMass > 0) {
+      m_bodyDof[b] = m_dofCount;
+      m_dofCount += 6;
+    }
+  auto nodeDof = [&](int32_t node) { return m_nodeDof[node - m_firstNode]; };
+  auto bodyDof = [&](int32_t body) {
+    return m_bodyDof[std::find(m_bodies.begin(), m_bodies.end(), body) - m_bodies.begin()];
+  };
+
+  const int32_t rowCount = scalarRowCount();
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(static_cast<size_t>(m_dofCount) * 3 + static_cast<size_t>(rowCount) * 16);
+
+  // H = M + h² K_g
+  for (int32_t n = 0; n < m_nodeCount; ++n) {
+    if (m_nodeDof[n] < 0) continue;
+    const double mass = 1.0 / nodes.inverseMass[m_firstNode + n];
+    for (int32_t c = 0; c < 3; ++c) entries.emplace_back(m_nodeDof[n] + c, m_nodeDof[n] + c, mass);
+  }
+  for (size_t b = 0; b < m_bodies.size(); ++b) {
+    if (m_bodyDof[b] < 0) continue;
+    const RigidSolverState& body = rigid[m_bodies[b]];
+    const Mat3 inertia = body.inverseInertia.inverse();
+    const int32_t dof = m_bodyDof[b];
+    for (int32_t r = 0; r < 3; ++r) {
+      entries.emplace_back(dof + r, dof + r, 1.0 / body.inverseMass);
+      for (int32_t c = 0; c < 3; ++c) entries.emplace_back(dof + 3 + r, dof + 3 + c, inertia(r, c));
+    }
+  }
+  // Every edge gets its entries, zero when slack, so the sparsity pattern stays the same from
+  // step to step and the ordering and symbolic analysis are done once.
+  for (const BlockRowRef& ref : m_rows) {
+    if (ref.type != RowType::Inextensibility) continue;
+    const InextensibilityRow& row = rows.inextensibility[ref.index];
+    const bool taut = row.lambda < 0 && row.effectiveMass != 0.0;
+    const Vec3 n = row.jacobian[1];
+    const Mat3 g = taut ? Mat3((timeStep * -row.lambda / row.restLength) * (Mat3::Identity() - n * n.transpose()))
+                        : Mat3::Zero();
+    const std::array<int32_t, 2> dof{nodeDof(row.node[0]), nodeDof(row.node[1])};
+    for (int a = 0; a < 2; ++a)
+      for (int b = 0; b < 2; ++b) {
+        if (dof[a] < 0 || dof[b] < 0) continue;
+        const double sign = a == b ? 1.0 : -1.0;
+        for (int32_t r = 0; r < 3; ++r)
+          for (int32_t c = 0; c < 3; ++c) entries.emplace_back(dof[a] + r, dof[b] + c, sign * g(r, c));
+      }
+  }
+
+  // J and Jᵀ, and the compliance −E. Row r of the KKT system is m_dofCount + r.
+  m_bias.resize(rowCount);
+  m_active.assign(rowCount, false);
+  for (int32_t r = 0; r < rowCount; ++r) {
+    const int32_t kktRow = m_dofCount + r;
+    double inverseMassSum = 0.0;
+    auto add = [&](int32_t dof, const Vec3& j, double inverseMass) {
+      if (dof < 0) return;
+      for (int32_t c = 0; c < 3; ++c) {
+        entries.emplace_back(kktRow, dof + c, j[c]);
+        entries.emplace_back(dof + c, kktRow, j[c]);
+      }
+      inverseMassSum += inverseMass * j.squaredNorm();
+    };
+    const BlockRowRef& ref = m_rows[r];
+    switch (ref.type) {
+      case RowType::FixedPoint: {
+        const FixedPointRow& row = rows.fixedPoints[ref.index];
+        add(nodeDof(row.node), Vec3::Unit(ref.component), nodes.inverseMass[row.node]);
+        m_bias[r] = row.bias[ref.component];
+        break;
+      }
+      case RowType::Anchor: {
+        const AnchorRow& row = rows.anchors[ref.index];
+        const Vec3 axis = Vec3::Unit(ref.component);
+        for (int k = 0; k < 4; ++k)
+          if (row.weight[k] != 0.0) add(nodeDof(row.node[k]), row.weight[k] * axis, nodes.inverseMass[row.node[k]]);
+        const RigidSolverState& body = rigid[row.body];
+        const int32_t dof = bodyDof(row.body);
+        add(dof, -axis, body.inverseMass);
+        const Vec3 angular = axis.cross(row.offset);
+        if (dof >= 0) add(dof + 3, angular, 0.0);
+        inverseMassSum += angular.dot(body.inverseInertia * angular);
+        m_bias[r] = row.bias[ref.component];
+        break;
+      }
+      case RowType::Inextensibility: {
+        const InextensibilityRow& row = rows.inextensibility[ref.index];
+        if (row.effectiveMass != 0.0) {
+          add(nodeDof(row.node[0]), row.jacobian[0], nodes.inverseMass[row.node[0]]);
+          add(nodeDof(row.node[1]), row.jacobian[1], nodes.inverseMass[row.node[1]]);
+        }
+        m_bias[r] = row.bias;
+        break;
+      }
+      default: break;
+    }
+    // A row that touches nothing movable is left out: unit compliance, zero right-hand side.
+    m_active[r] = inverseMassSum > 0.0;
+    entries.emplace_back(kktRow, kktRow, m_active[r] ? -kRelativeCompliance * inverseMassSum : -1.0);
+  }
+
+  const int32_t size = m_dofCount + rowCount;
+  SparseMatrix kkt(size, size);
+  kkt.setFromTriplets(entries.begin(), entries.end());
+  // The pattern depends only on which nodes are pinned and which bodies can move.
+  std::vector<int32_t> layout = m_nodeDof;
+  layout.insert(layout.end(), m_bodyDof.begin(), m_bodyDof.end());
+  if (layout != m_analysedLayout || kkt.nonZeros() != m_analysedNonZeros) {
+    m_factor->analyzePattern(kkt);
+    m_analysedLayout = std::move(layout);
+    m_analysedNonZeros = kkt.nonZeros();
+  }
+  m_factor->factorize(kkt);
+  m_factorOk = m_factor->info() == Eigen::Success;
+}
+
+void DirectBlock::clearImpulses(ConstraintRows& rows) const {
+  for (const BlockRowRef& ref : m_rows) {
+    switch (ref.type) {
+      case RowType::FixedPoint: rows.fixedPoints[ref.index].lambda[ref.component] = 0.0; break;
+      case RowType::Anchor: rows.anchors[ref.index].lambda[ref.component] = 0.0; break;
+      case RowType::Inextensibility: rows.inextensibility[ref.index].lambda = 0.0; break;
+      default: break;
+    }
+  }
+}
+
+double DirectBlock::rowVelocity(const ConstraintRows& rows, const BlockRowRef& ref, const SolverContext& ctx) const {
+  switch (ref.type) {
+    case RowType::FixedPoint: return ctx.velocity[rows.fixedPoints[ref.index].node][ref.component];
+    case RowType::Anchor: {
+      const AnchorRow& row = rows.anchors[ref.index];
+      return (row.deformableVelocity(ctx.velocity) - ctx.rigid[row.body].velocityAt(row.offset))[ref.component];
+    }
+    case RowType::Inextensibility: {
+      const InextensibilityRow& row = rows.inextensibility[ref.index];
+      return row.jacobian[0].dot(ctx.velocity[row.node[0]]) + row.jacobian[1].dot(ctx.velocity[row.node[1]]);
+    }
+    default: return 0.0;
+  }
+}
+
+void DirectBlock::solve(ConstraintRows& rows, SolverContext& ctx, SweepStats& stats) {
+  if (m_rows.empty() || !m_factorOk) return;
+  const int32_t rowCount = scalarRowCount();
+  m_rhs.setZero(m_dofCount + rowCount);
+  for (int32_t r = 0; r < rowCount; ++r)
+    if (m_active[r]) m_rhs[m_dofCount + r] = -(rowVelocity(rows, m_rows[r], ctx) + m_bias[r]);
+  m_solution = m_factor->solve(m_rhs);
+
+  for (int32_t n = 0; n < m_nodeCount; ++n)
+    if (m_nodeDof[n] >= 0) ctx.velocity[m_firstNode + n] += m_solution.segment<3>(m_nodeDof[n]);
+  for (size_t b = 0; b < m_bodies.size(); ++b) {
+    if (m_bodyDof[b] < 0) continue;
+    RigidSolverState& body = ctx.rigid[m_bodies[b]];
+    body.linearVelocity += m_solution.segment<3>(m_bodyDof[b]);
+    body.angularVelocity += m_solution.segment<3>(m_bodyDof[b] + 3);
+  }
+  for (int32_t r = 0; r < rowCount; ++r) {
+    const double delta = -m_solution[m_dofCount + r];
+    const BlockRowRef& ref = m_rows[r];
+    switch (ref.type) {
+      case RowType::FixedPoint: rows.fixedPoints[ref.index].lambda[ref.component] += delta; break;
+      case RowType::Anchor: {
+        AnchorRow& row = rows.anchors[ref.index];
+        row.lambda[ref.component] += delta;
+        // The body's share of this row, for the per-body impulse report.
+        RigidSolverState& body = ctx.rigid[row.body];
+        const Vec3 impulse = -delta * Vec3::Unit(ref.component);
+        body.impulse += impulse;
+        body.angularImpulse += row.offset.cross(impulse);
+        break;
+      }
+      case RowType::Inextensibility: rows.inextensibility[ref.index].lambda += delta; break;
+      default: break;
+    }
+    stats.add(delta);
+  }
+}
+
+}  // namespace tandem

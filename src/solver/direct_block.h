@@ -1,0 +1,98 @@
+// A direct block: every bilateral, unbounded row of one deformable body, solved exactly
+// together in each sweep (block Gauss-Seidel with one large block).
+//
+// Why. Projected Gauss-Seidel converges at a rate that falls with the mass ratio across a
+// chain of rows times the square of its length: a 10 g-per-node rope holding a 1 kg box needs
+// thousands of sweeps to stop stretching, and warm starting an unconverged solution makes it
+// oscillate and grow. Solving the rope's rows as one block removes both problems: one sweep
+// gives the exact impulses whatever the masses.
+//
+// What. For the block's scalar rows (fixed points and anchors contribute three each,
+// inextensibility one) with Jacobian J over the block's movable degrees of freedom (three per
+// free node of the body, six per dynamic rigid body it is anchored to) and mass matrix M
+// (m I per node; m I and the world inertia per rigid body), each sweep solves
+//
+//   [ H   Jᵀ ] [ Δv ]   [     0      ]       H = M + h² K_g
+//   [ J  −E  ] [ −Δλ] = [ −(J v + b) ]       E = ε diag(J M⁻¹ Jᵀ), a tiny compliance that
+//                                              keeps redundant rows (a triangulated cloth) solvable
+//
+// so that J (v + Δv) = −b for every row at once, with Δv = H⁻¹ Jᵀ Δλ.
+//
+// Geometric stiffness. A taut rope of light nodes holding a heavy body has sideways modes of
+// frequency √(T / m L); once h times that passes 2 the velocity-level linearisation, which
+// takes J at the start of the step, pumps energy into them and the rope buckles and stretches
+// (Tournier et al. 2015, "Stable constrained dynamics"). K_g is the stiffness of the rows'
+// forces under sideways motion, h² K_g = h |λ| / L (I − n nᵀ) per taut edge (λ from the last
+// step), coupling the edge's two nodes as [G −G; −G G]. Its columns sum to zero, so internal
+// rows still conserve momentum exactly; edges in compression get none (theirs is negative).
+//
+// The KKT matrix is symmetric quasi-definite, so a sparse LDLᵀ without pivoting (AMD ordering)
+// factorises it once per step; each sweep is one pair of triangular solves. Rows with bounds
+// (finite max force, one-sided modes) stay in the PGS sweep, which runs before the block in
+// every iteration.
+#pragma once
+
+#include <tandem/report.h>
+
+#include "solver/constraint_rows.h"
+
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace tandem {
+
+struct BlockRowRef {
+  RowType type;
+  int32_t index;    // into the row array of that type
+  int32_t component;  // 0..2 for the three rows of a fixed point or anchor, 0 otherwise
+};
+
+class DirectBlock {
+ public:
+  DirectBlock(int32_t firstNode, int32_t nodeCount) : m_firstNode(firstNode), m_nodeCount(nodeCount) {}
+
+  // Finds every bilateral unbounded row on the body's nodes. Call again when rows are added.
+  void collectRows(const ConstraintRows& rows);
+  // Takes the collected rows out of the PGS sweep: from now on this block solves them.
+  void claimRows(ConstraintRows& rows) const;
+  int scalarRowCount() const { return static_cast<int>(m_rows.size()); }
+
+  // Assembles and factorises the KKT matrix for this step. Rows must be prepared first;
+  // their λ still hold the last step's impulses (for the geometric stiffness).
+  void prepare(const ConstraintRows& rows, const NodeArrays& nodes, std::span<const RigidSolverState> rigid,
+               double timeStep);
+
+  // Starts the block's rows from zero impulse for this step (after prepare has read λ).
+  void clearImpulses(ConstraintRows& rows) const;
+
+  // One exact solve of the block against the current velocities.
+  void solve(ConstraintRows& rows, SolverContext& ctx, SweepStats& stats);
+
+ private:
+  using SparseMatrix = Eigen::SparseMatrix<double>;
+
+  int32_t m_firstNode;
+  int32_t m_nodeCount;
+  std::vector<BlockRowRef> m_rows;
+  std::vector<int32_t> m_bodies;  // rigid bodies the block's anchors hold
+
+  std::vector<int32_t> m_nodeDof;  // per node of the body: its first degree of freedom, or −1 if pinned
+  std::vector<int32_t> m_bodyDof;  // per entry of m_bodies: first degree of freedom, or −1 if immovable
+  int32_t m_dofCount = 0;
+  Eigen::VectorXd m_bias;
+  std::vector<bool> m_active;  // rows where nothing can move are left out of the solve
+  // Eigen's factorisations cannot move; the block can.
+  std::unique_ptr<Eigen::SimplicialLDLT<SparseMatrix>> m_factor = std::make_unique<Eigen::SimplicialLDLT<SparseMatrix>>();
+  bool m_factorOk = false;
+  std::vector<int32_t> m_analysedLayout;  // the degrees of freedom the ordering was computed for
+  Eigen::Index m_analysedNonZeros = -1;
+  Eigen::VectorXd m_rhs, m_solution;
+
+  double rowVelocity(const ConstraintRows& rows, const BlockRowRef& ref, const SolverContext& ctx) const;
+};
+
+}  // namespace tandem

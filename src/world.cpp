@@ -1,0 +1,540 @@
+#include <tandem/world.h>
+
+#include "bullet/bullet_world.h"
+#include "models/mass_spring.h"
+#include "solver/constraint_rows.h"
+#include "solver/direct_block.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+namespace tandem {
+namespace {
+
+std::string str(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%g", value);
+  return buffer;
+}
+
+bool isPositive(double value) { return value > 0 && !std::isnan(value); }  // +inf allowed
+
+struct DeformableRecord {
+  std::string name;
+  int32_t firstNode = 0;
+  int32_t nodeCount = 0;
+  DeformableMesh restMesh;
+  RowSolverKind rowSolver = RowSolverKind::Auto;
+};
+
+class StageClock {
+ public:
+  double lap() {
+    const auto now = std::chrono::steady_clock::now();
+    const double seconds = std::chrono::duration<double>(now - m_last).count();
+    m_last = now;
+    return seconds;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point m_last = std::chrono::steady_clock::now();
+};
+
+Status validateSettings(const WorldSettings& settings) {
+  if (!settings.gravity.allFinite()) return Error{"settings: gravity must be finite"};
+  if (settings.solver.iterations < 1 || settings.solver.iterations > 1000)
+    return Error{"settings: solver iterations must be in [1, 1000], got " + std::to_string(settings.solver.iterations)};
+  if (!(settings.solver.baumgarte >= 0 && settings.solver.baumgarte <= 1))
+    return Error{"settings: baumgarte (β·h) must be in [0, 1], got " + str(settings.solver.baumgarte)};
+  return {};
+}
+
+Status validateShape(const RigidShape& s, const std::string& who) {
+  auto positiveFinite = [](double v) { return std::isfinite(v) && v > 0; };
+  switch (s.type) {
+    case ShapeType::Box:
+      if (!s.halfExtents.allFinite() || s.halfExtents.minCoeff() <= 0)
+        return Error{who + ": box half extents must be positive and finite"};
+      break;
+    case ShapeType::Sphere:
+      if (!positiveFinite(s.radius)) return Error{who + ": sphere radius must be positive, got " + str(s.radius)};
+      break;
+    case ShapeType::Cylinder:
+    case ShapeType::Capsule:
+      if (!positiveFinite(s.radius) || !positiveFinite(s.halfHeight))
+        return Error{who + ": radius and half height must be positive, got " + str(s.radius) + " and " +
+                     str(s.halfHeight)};
+      break;
+    case ShapeType::Plane:
+      if (!s.planeNormal.allFinite() || s.planeNormal.norm() < 1e-9 || !std::isfinite(s.planeOffset))
+        return Error{who + ": plane normal must be a finite non-zero vector and the offset finite"};
+      break;
+  }
+  return {};
+}
+
+}  // namespace
+
+RigidShape RigidShape::box(const Vec3& halfExtents) {
+  RigidShape s;
+  s.type = ShapeType::Box;
+  s.halfExtents = halfExtents;
+  return s;
+}
+RigidShape RigidShape::sphere(double radius) {
+  RigidShape s;
+  s.type = ShapeType::Sphere;
+  s.radius = radius;
+  return s;
+}
+RigidShape RigidShape::cylinder(double radius, double halfHeight) {
+  RigidShape s;
+  s.type = ShapeType::Cylinder;
+  s.radius = radius;
+  s.halfHeight = halfHeight;
+  return s;
+}
+RigidShape RigidShape::capsule(double radius, double halfHeight) {
+  RigidShape s = cylinder(radius, halfHeight);
+  s.type = ShapeType::Capsule;
+  return s;
+}
+RigidShape RigidShape::plane(const Vec3& normal, double offset) {
+  RigidShape s;
+  s.type = ShapeType::Plane;
+  s.planeNormal = normal;
+  s.planeOffset = offset;
+  return s;
+}
+
+AnchorDesc AnchorDesc::node(DeformableId deformable, int32_t node, RigidBodyId body) {
+  AnchorDesc desc;
+  desc.deformable = deformable;
+  desc.nodes = {node, -1, -1, -1};
+  desc.weights = {1.0, 0.0, 0.0, 0.0};
+  desc.nodeCount = 1;
+  desc.body = body;
+  return desc;
+}
+
+struct World::Impl final : bullet::SolverHooks {
+  WorldSettings settings;
+  bullet::BulletWorld bullet;
+  std::vector<std::string> rigidNames;
+  std::vector<RigidSolverState> rigid;
+
+  NodeArrays nodes;
+  std::vector<DeformableRecord> deformables;
+  std::vector<EdgeSpring> springs;
+  ConstraintRows rows;
+  std::vector<DirectBlock> directBlocks;
+  bool directBlocksStale = true;  // rows were added since the blocks were built
+
+  StepReport report;
+  double time = 0.0;
+  int64_t steps = 0;
+  double timeStep = 0.0;  // of the step in progress
+
+  explicit Impl(const WorldSettings& s) : settings(s), bullet(s.gravity) {}
+
+  SolverContext context() {
+    return {nodes.velocity, nodes.inverseMass, rigid, timeStep, settings.solver.baumgarte / timeStep};
+  }
+
+  // ---- Stage 1: models -----------------------------------------------------------------
+  // Unconstrained node velocities: v* = v + h m⁻¹ (f_internal + f_external), gravity included.
+  void computeUnconstrainedVelocities(double h) {
+    for (Vec3& f : nodes.force) f.setZero();
+    addSpringForces(springs, nodes);
+    for (size_t i = 0; i < nodes.size(); ++i) {
+      if (nodes.inverseMass[i] == 0.0) continue;
+      nodes.velocity[i] += h * (settings.gravity + nodes.inverseMass[i] * nodes.force[i]);
+    }
+  }
+
+  // ---- Stage 4: rows ---------------------------------------------------------------------
+  void prepareRows(double h) {
+    if (directBlocksStale) buildDirectBlocks();
+    wakeBodiesPulledByDeformables();
+    bullet.loadRigidProperties(rigid);
+    rows.prepare(nodes, rigid, h, settings.solver.baumgarte / h);
+    for (DirectBlock& block : directBlocks) block.prepare(rows, nodes, rigid, h);
+    report.rowCounts = rows.countRows();
+  }
+
+  void buildDirectBlocks() {
+    directBlocks.clear();
+    for (const DeformableRecord& body : deformables) {
+      if (body.rowSolver == RowSolverKind::Iterative) continue;
+      DirectBlock block(body.firstNode, body.nodeCount);
+      block.collectRows(rows);
+      if (block.scalarRowCount() == 0) continue;
+      if (body.rowSolver == RowSolverKind::Auto && block.scalarRowCount() > kAutoDirectRowLimit) continue;
+      block.claimRows(rows);
+      directBlocks.push_back(std::move(block));
+    }
+    directBlocksStale = false;
+  }
+
+  // A sleeping body is immovable to Tandem's rows. It wakes when a deformable anchored to it
+  // moves faster than the body's own sleeping threshold.
+  void wakeBodiesPulledByDeformables() {
+    for (const AnchorRow& row : rows.anchors) {
+      if (!bullet.isDynamic(row.body) || bullet.isAwake(row.body)) continue;
+      const double speed = row.deformableVelocity(nodes.velocity).norm();
+      if (speed > bullet.sleepingThreshold(row.body)) bullet.wake(row.body);
+    }
+  }
+
+  // ---- Stage 5: interleaved solve (called from inside Bullet's solver) -------------------
+  void afterSetup() override {
+    bullet.loadRigidVelocities(rigid);
+    SolverContext ctx = context();
+    if (settings.solver.warmStart)
+      rows.warmStart(ctx);
+    else
+      rows.clearImpulses();
+    for (const DirectBlock& block : directBlocks) block.clearImpulses(rows);
+    bullet.storeRigidVelocities(rigid);
+  }
+
+  // Bounded rows by projected Gauss-Seidel first, then each direct block exactly, so that a
+  // sweep ends with the bilateral rows satisfied.
+  void afterIteration(int) override {
+    bullet.loadRigidVelocities(rigid);
+    SolverContext ctx = context();
+    SweepStats stats;
+    rows.sweep(ctx, stats);
+    for (DirectBlock& block : directBlocks) block.solve(rows, ctx, stats);
+    report.rmsDeltaLambda.push_back(stats.rows ? std::sqrt(stats.sumSquares / static_cast<double>(stats.rows)) : 0.0);
+    bullet.storeRigidVelocities(rigid);
+  }
+
+  // ---- Stage 7: integrate ----------------------------------------------------------------
+  void integrateNodes(double h) {
+    for (size_t i = 0; i < nodes.size(); ++i) nodes.position[i] += h * nodes.velocity[i];
+    for (FixedPointRow& row : rows.fixedPoints) row.previousTarget = row.target;
+  }
+
+  Status checkFinite() const {
+    for (const DeformableRecord& body : deformables)
+      for (int32_t i = 0; i < body.nodeCount; ++i) {
+        const int32_t n = body.firstNode + i;
+        if (!nodes.position[n].allFinite() || !nodes.velocity[n].allFinite())
+          return Error{"step " + std::to_string(steps) + ": deformable '" + body.name + "' node " + std::to_string(i) +
+                       " has a non-finite position or velocity: the simulation diverged (try a smaller time "
+                       "step, more iterations or softer springs)"};
+      }
+    for (int b = 0; b < bullet.rigidBodyCount(); ++b)
+      if (!bullet.position(b).allFinite() || !bullet.linearVelocity(b).allFinite() ||
+          !bullet.angularVelocity(b).allFinite())
+        return Error{"step " + std::to_string(steps) + ": rigid body '" + rigidNames[b] +
+                     "' has a non-finite state: the simulation diverged"};
+    return {};
+  }
+
+  // ---- Lookups ---------------------------------------------------------------------------
+  bool validRigid(RigidBodyId id) const { return id.index >= 0 && id.index < bullet.rigidBodyCount(); }
+  bool validDeformable(DeformableId id) const {
+    return id.index >= 0 && id.index < static_cast<int32_t>(deformables.size());
+  }
+  Result<int32_t> globalNode(DeformableId body, int32_t node, const char* who) const {
+    if (!validDeformable(body)) return Error{std::string(who) + ": no deformable body with index " +
+                                             std::to_string(body.index)};
+    const DeformableRecord& record = deformables[body.index];
+    if (node < 0 || node >= record.nodeCount)
+      return Error{std::string(who) + ": node " + std::to_string(node) + " is out of range for deformable '" +
+                   record.name + "' (" + std::to_string(record.nodeCount) + " nodes)"};
+    return record.firstNode + node;
+  }
+};
+
+World::World() : m_impl(std::make_unique<Impl>(WorldSettings{})) {}
+World::~World() = default;
+
+Status World::setSettings(const WorldSettings& settings) {
+  if (Status s = validateSettings(settings); !s) return s;
+  m_impl->settings = settings;
+  m_impl->bullet.setGravity(settings.gravity);
+  return {};
+}
+const WorldSettings& World::settings() const { return m_impl->settings; }
+
+// ---- Rigid bodies -----------------------------------------------------------------------
+
+Result<RigidBodyId> World::addRigidBody(const RigidBodyDesc& desc) {
+  const std::string who = "rigid body '" + desc.name + "'";
+  if (Status s = validateShape(desc.shape, who); !s) return Error{s.message()};
+  if (desc.motion == MotionType::Dynamic && !(std::isfinite(desc.mass) && desc.mass > 0))
+    return Error{who + ": mass must be positive and finite for a dynamic body, got " + str(desc.mass) + " kg"};
+  if (desc.shape.type == ShapeType::Plane && desc.motion != MotionType::Static)
+    return Error{who + ": a plane can only be static"};
+  if (!desc.position.allFinite()) return Error{who + ": position is not finite"};
+  if (!desc.orientation.coeffs().allFinite() || desc.orientation.norm() < 1e-9)
+    return Error{who + ": orientation must be a finite non-zero quaternion"};
+  if (!desc.linearVelocity.allFinite() || !desc.angularVelocity.allFinite())
+    return Error{who + ": velocity is not finite"};
+  if (!(desc.friction >= 0 && std::isfinite(desc.friction)))
+    return Error{who + ": friction must be >= 0, got " + str(desc.friction)};
+  if (!(desc.restitution >= 0 && desc.restitution <= 1))
+    return Error{who + ": restitution must be in [0, 1], got " + str(desc.restitution)};
+  const int index = m_impl->bullet.addRigidBody(desc);
+  m_impl->rigidNames.push_back(desc.name);
+  m_impl->rigid.emplace_back();
+  return RigidBodyId{index};
+}
+
+Result<JointId> World::addHinge(const HingeDesc& desc) {
+  if (!m_impl->validRigid(desc.bodyA)) return Error{"hinge: body A does not exist"};
+  if (desc.bodyB && !m_impl->validRigid(*desc.bodyB)) return Error{"hinge: body B does not exist"};
+  if (desc.bodyB && *desc.bodyB == desc.bodyA) return Error{"hinge: body A and body B are the same body"};
+  if (!desc.pivot.allFinite()) return Error{"hinge: pivot is not finite"};
+  if (!desc.axis.allFinite() || desc.axis.norm() < 1e-9) return Error{"hinge: axis must be a finite non-zero vector"};
+  return JointId{m_impl->bullet.addHinge(desc)};
+}
+
+int World::rigidBodyCount() const { return m_impl->bullet.rigidBodyCount(); }
+std::optional<RigidBodyId> World::findRigidBody(std::string_view name) const {
+  for (size_t i = 0; i < m_impl->rigidNames.size(); ++i)
+    if (m_impl->rigidNames[i] == name) return RigidBodyId{static_cast<int32_t>(i)};
+  return std::nullopt;
+}
+const std::string& World::rigidName(RigidBodyId body) const { return m_impl->rigidNames.at(body.index); }
+Vec3 World::rigidPosition(RigidBodyId body) const { return m_impl->bullet.position(body.index); }
+Quat World::rigidOrientation(RigidBodyId body) const { return m_impl->bullet.orientation(body.index); }
+Vec3 World::rigidLinearVelocity(RigidBodyId body) const { return m_impl->bullet.linearVelocity(body.index); }
+Vec3 World::rigidAngularVelocity(RigidBodyId body) const { return m_impl->bullet.angularVelocity(body.index); }
+double World::rigidMass(RigidBodyId body) const { return m_impl->bullet.mass(body.index); }
+bool World::rigidIsAwake(RigidBodyId body) const { return m_impl->bullet.isAwake(body.index); }
+void World::putRigidToSleep(RigidBodyId body) { m_impl->bullet.putToSleep(body.index); }
+
+Status World::setKinematicTarget(RigidBodyId body, const Vec3& position, const Quat& orientation) {
+  if (!m_impl->validRigid(body)) return Error{"kinematic target: no rigid body with index " + std::to_string(body.index)};
+  if (!position.allFinite() || !orientation.coeffs().allFinite() || orientation.norm() < 1e-9)
+    return Error{"kinematic target: pose is not finite"};
+  m_impl->bullet.setKinematicTarget(body.index, position, orientation);
+  return {};
+}
+
+double World::rigidContactImpulse(RigidBodyId a, RigidBodyId b) const {
+  return m_impl->bullet.contactImpulse(a.index, b.index);
+}
+Vec3 World::deformableImpulseOnRigid(RigidBodyId body) const { return m_impl->rigid[body.index].impulse; }
+Vec3 World::deformableAngularImpulseOnRigid(RigidBodyId body) const {
+  return m_impl->rigid[body.index].angularImpulse;
+}
+
+// ---- Deformable bodies ------------------------------------------------------------------
+
+Result<DeformableId> World::addDeformable(const DeformableDesc& desc) {
+  const std::string who = "deformable '" + desc.name + "'";
+  if (Status s = validateMesh(desc.mesh); !s) return Error{who + ": " + s.message()};
+  const MassSpringSettings& springs = desc.springs;
+  if (!(springs.stiffness >= 0 && std::isfinite(springs.stiffness)) ||
+      !(springs.damping >= 0 && std::isfinite(springs.damping)))
+    return Error{who + ": spring stiffness and damping must be >= 0 and finite"};
+  if (desc.inextensibility.enabled && !isPositive(desc.inextensibility.maxForce))
+    return Error{who + ": inextensibility max force must be positive, got " + str(desc.inextensibility.maxForce)};
+  if (desc.bending.enabled && !isPositive(desc.bending.maxForce))
+    return Error{who + ": bending max force must be positive, got " + str(desc.bending.maxForce)};
+
+  Impl& w = *m_impl;
+  const DeformableMesh& mesh = desc.mesh;
+  const int32_t first = static_cast<int32_t>(w.nodes.size());
+  for (int32_t i = 0; i < mesh.nodeCount(); ++i) {
+    w.nodes.position.push_back(mesh.positions[i]);
+    w.nodes.velocity.push_back(Vec3::Zero());
+    w.nodes.force.push_back(Vec3::Zero());
+    w.nodes.inverseMass.push_back(1.0 / mesh.masses[i]);
+  }
+  for (const auto& e : mesh.edges) {
+    const double restLength = (mesh.positions[e[1]] - mesh.positions[e[0]]).norm();
+    if (springs.stiffness > 0 || springs.damping > 0)
+      w.springs.push_back({first + e[0], first + e[1], restLength, springs.stiffness, springs.damping});
+    if (desc.inextensibility.enabled) {
+      InextensibilityRow row;
+      row.node = {first + e[0], first + e[1]};
+      row.restLength = restLength;
+      const auto bounds = inextensibilityForceBounds(desc.inextensibility.mode, desc.inextensibility.maxForce);
+      row.lambdaMin = bounds[0];
+      row.lambdaMax = bounds[1];
+      w.rows.inextensibility.push_back(row);
+    }
+  }
+  if (desc.bending.enabled) {
+    for (const EdgeHinge& hinge : findEdgeHinges(mesh.triangles)) {
+      BendingRow row;
+      row.node = {first + hinge.i, first + hinge.j, first + hinge.left, first + hinge.right};
+      const auto& x = mesh.positions;
+      row.restDot = bendingDot(x[hinge.i], x[hinge.j], x[hinge.left], x[hinge.right]);
+      row.restEdgeLength = (x[hinge.j] - x[hinge.i]).norm();
+      row.maxForce = desc.bending.maxForce;
+      w.rows.bending.push_back(row);
+    }
+  }
+  w.deformables.push_back({desc.name, first, mesh.nodeCount(), mesh, desc.rowSolver});
+  w.directBlocksStale = true;
+  return DeformableId{static_cast<int32_t>(w.deformables.size()) - 1};
+}
+
+int World::deformableCount() const { return static_cast<int>(m_impl->deformables.size()); }
+std::optional<DeformableId> World::findDeformable(std::string_view name) const {
+  for (size_t i = 0; i < m_impl->deformables.size(); ++i)
+    if (m_impl->deformables[i].name == name) return DeformableId{static_cast<int32_t>(i)};
+  return std::nullopt;
+}
+const std::string& World::deformableName(DeformableId body) const { return m_impl->deformables.at(body.index).name; }
+
+std::span<const Vec3> World::nodePositions(DeformableId body) const {
+  const DeformableRecord& r = m_impl->deformables.at(body.index);
+  return std::span<const Vec3>(m_impl->nodes.position).subspan(r.firstNode, r.nodeCount);
+}
+std::span<const Vec3> World::nodeVelocities(DeformableId body) const {
+  const DeformableRecord& r = m_impl->deformables.at(body.index);
+  return std::span<const Vec3>(m_impl->nodes.velocity).subspan(r.firstNode, r.nodeCount);
+}
+std::span<const double> World::nodeInverseMasses(DeformableId body) const {
+  const DeformableRecord& r = m_impl->deformables.at(body.index);
+  return std::span<const double>(m_impl->nodes.inverseMass).subspan(r.firstNode, r.nodeCount);
+}
+const DeformableMesh& World::restMesh(DeformableId body) const { return m_impl->deformables.at(body.index).restMesh; }
+
+Status World::setNodeVelocity(DeformableId body, int32_t node, const Vec3& velocity) {
+  Result<int32_t> n = m_impl->globalNode(body, node, "set node velocity");
+  if (!n) return n.status();
+  if (!velocity.allFinite()) return Error{"set node velocity: velocity is not finite"};
+  m_impl->nodes.velocity[*n] = velocity;
+  return {};
+}
+
+Status World::fixNode(DeformableId body, int32_t node) {
+  Result<int32_t> n = m_impl->globalNode(body, node, "fix node");
+  if (!n) return n.status();
+  m_impl->nodes.inverseMass[*n] = 0.0;
+  m_impl->nodes.velocity[*n].setZero();
+  return {};
+}
+
+// ---- Constraints ------------------------------------------------------------------------
+
+Result<FixedPointId> World::addFixedPoint(DeformableId body, int32_t node, const Vec3& target, double maxForce) {
+  Result<int32_t> n = m_impl->globalNode(body, node, "fixed point");
+  if (!n) return Error{n.message()};
+  if (!target.allFinite()) return Error{"fixed point: target is not finite"};
+  if (!isPositive(maxForce)) return Error{"fixed point: max force must be positive, got " + str(maxForce)};
+  FixedPointRow row;
+  row.node = *n;
+  row.target = row.previousTarget = target;
+  row.maxForce = maxForce;
+  m_impl->rows.fixedPoints.push_back(row);
+  m_impl->directBlocksStale = true;
+  return FixedPointId{static_cast<int32_t>(m_impl->rows.fixedPoints.size()) - 1};
+}
+
+Status World::setFixedPointTarget(FixedPointId id, const Vec3& target) {
+  if (id.index < 0 || id.index >= static_cast<int32_t>(m_impl->rows.fixedPoints.size()))
+    return Error{"fixed point target: no fixed point with index " + std::to_string(id.index)};
+  if (!target.allFinite()) return Error{"fixed point target: target is not finite"};
+  m_impl->rows.fixedPoints[id.index].target = target;
+  return {};
+}
+
+Vec3 World::fixedPointImpulse(FixedPointId id) const { return m_impl->rows.fixedPoints.at(id.index).lambda; }
+
+Result<AnchorId> World::addAnchor(const AnchorDesc& desc) {
+  Impl& w = *m_impl;
+  if (!w.validRigid(desc.body)) return Error{"anchor: no rigid body with index " + std::to_string(desc.body.index)};
+  if (desc.nodeCount < 1 || desc.nodeCount > 4)
+    return Error{"anchor: node count must be 1 to 4, got " + std::to_string(desc.nodeCount)};
+  if (!isPositive(desc.maxForce)) return Error{"anchor: max force must be positive, got " + str(desc.maxForce)};
+  AnchorRow row;
+  row.body = desc.body.index;
+  row.maxForce = desc.maxForce;
+  double weightSum = 0.0;
+  for (int k = 0; k < desc.nodeCount; ++k) {
+    Result<int32_t> n = w.globalNode(desc.deformable, desc.nodes[k], "anchor");
+    if (!n) return Error{n.message()};
+    if (!std::isfinite(desc.weights[k])) return Error{"anchor: weights must be finite"};
+    row.node[k] = *n;
+    row.weight[k] = desc.weights[k];
+    weightSum += desc.weights[k];
+  }
+  if (std::abs(weightSum - 1.0) > 1e-6) return Error{"anchor: weights must sum to 1, got " + str(weightSum)};
+  for (int k = desc.nodeCount; k < 4; ++k) {
+    row.node[k] = row.node[0];
+    row.weight[k] = 0.0;
+  }
+  const Vec3 com = w.bullet.position(row.body);
+  const Quat orientation = w.bullet.orientation(row.body);
+  if (desc.localPoint) {
+    if (!desc.localPoint->allFinite()) return Error{"anchor: local point is not finite"};
+    row.localPoint = *desc.localPoint;
+  } else {
+    row.localPoint = orientation.conjugate() * (row.deformablePoint(w.nodes.position) - com);
+  }
+  w.rows.anchors.push_back(row);
+  w.directBlocksStale = true;
+  return AnchorId{static_cast<int32_t>(w.rows.anchors.size()) - 1};
+}
+
+AnchorState World::anchorState(AnchorId id) const {
+  const AnchorRow& row = m_impl->rows.anchors.at(id.index);
+  AnchorState state;
+  state.impulse = row.lambda;
+  state.worldPointOnBody = m_impl->bullet.position(row.body) + m_impl->bullet.orientation(row.body) * row.localPoint;
+  state.worldPointOnDeformable = row.deformablePoint(m_impl->nodes.position);
+  return state;
+}
+
+// ---- The step ---------------------------------------------------------------------------
+
+Status World::step(double h) {
+  if (!(std::isfinite(h) && h > 0 && h <= 1.0))
+    return Error{"step: time step must be in (0, 1] seconds, got " + str(h)};
+  Impl& w = *m_impl;
+  w.timeStep = h;
+  StepReport& report = w.report;
+  report.rmsDeltaLambda.clear();
+  StageClock clock;
+  auto timed = [&](Stage stage) { report.stageSeconds[static_cast<size_t>(stage)] = clock.lap(); };
+
+  w.computeUnconstrainedVelocities(h);  // 1. deformable models: unconstrained node velocities
+  timed(Stage::Models);
+  w.bullet.predictRigidMotion(h);       // 2. Bullet: gravity and external forces on rigid bodies
+  timed(Stage::RigidPrediction);
+  w.bullet.detectCollisions(h);         // 3. Bullet: rigid-rigid contacts
+  timed(Stage::CollisionDetection);
+  w.prepareRows(h);                     // 4. Tandem's rows: Jacobians, effective masses, biases
+  timed(Stage::Rows);
+  w.bullet.solve(h, w.settings.solver.iterations, w);  // 5+6. K × [Bullet iteration, Tandem sweep]
+  timed(Stage::Solve);
+  w.integrateNodes(h);                  // 7. symplectic Euler for nodes; Bullet for rigid bodies
+  w.bullet.integrate(h);
+  timed(Stage::Integrate);
+
+  report.bulletContactManifolds = w.bullet.manifoldCount();  // 8. report
+  report.bulletJoints = w.bullet.jointCount();
+  report.totalSeconds = 0.0;
+  for (double seconds : report.stageSeconds) report.totalSeconds += seconds;
+  w.time += h;
+  ++w.steps;
+  return w.checkFinite();
+}
+
+const StepReport& World::lastReport() const { return m_impl->report; }
+double World::time() const { return m_impl->time; }
+int64_t World::stepCount() const { return m_impl->steps; }
+
+Vec3 World::totalLinearMomentum() const {
+  Vec3 momentum = Vec3::Zero();
+  const NodeArrays& nodes = m_impl->nodes;
+  for (size_t i = 0; i < nodes.size(); ++i)
+    if (nodes.inverseMass[i] > 0) momentum += nodes.velocity[i] / nodes.inverseMass[i];
+  for (int b = 0; b < m_impl->bullet.rigidBodyCount(); ++b)
+    momentum += m_impl->bullet.mass(b) * m_impl->bullet.linearVelocity(b);
+  return momentum;
+}
+
+}  // namespace tandem
