@@ -201,9 +201,10 @@ Result<DeformableMesh> makeTetBox(const Vec3& minCorner, const Vec3& maxCorner, 
   for (const auto& t : mesh.tetrahedra) {
     for (int a = 0; a < 4; ++a)
       for (int b = a + 1; b < 4; ++b) edges.push_back({t[a], t[b]});
-    // Faces opposite each vertex, wound so the normal points away from that vertex.
+    // Faces opposite each vertex, wound so the normal points away from that vertex (the tet
+    // is positively oriented: (x1 − x0) · ((x2 − x0) × (x3 − x0)) > 0).
     const std::array<std::array<int32_t, 3>, 4> tetFaces{
-        {{t[1], t[3], t[2]}, {t[0], t[2], t[3]}, {t[0], t[3], t[1]}, {t[0], t[1], t[2]}}};
+        {{t[1], t[2], t[3]}, {t[0], t[3], t[2]}, {t[0], t[1], t[3]}, {t[0], t[2], t[1]}}};
     for (const auto& f : tetFaces) {
       std::array<int32_t, 3> key = f;
       std::sort(key.begin(), key.end());

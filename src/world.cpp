@@ -5,6 +5,7 @@
 #include "solver/constraint_rows.h"
 #include "solver/direct_block.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -48,6 +49,8 @@ Status validateSettings(const WorldSettings& settings) {
     return Error{"settings: solver iterations must be in [1, 1000], got " + std::to_string(settings.solver.iterations)};
   if (!(settings.solver.baumgarte >= 0 && settings.solver.baumgarte <= 1))
     return Error{"settings: baumgarte (β·h) must be in [0, 1], got " + str(settings.solver.baumgarte)};
+  if (!(settings.divergenceSpeed > 0))
+    return Error{"settings: divergence speed must be positive, got " + str(settings.divergenceSpeed)};
   return {};
 }
 
@@ -157,7 +160,6 @@ struct World::Impl final : bullet::SolverHooks {
   // ---- Stage 4: rows ---------------------------------------------------------------------
   void prepareRows(double h) {
     if (directBlocksStale) buildDirectBlocks();
-    wakeBodiesPulledByDeformables();
     bullet.loadRigidProperties(rigid);
     rows.prepare(nodes, rigid, h, settings.solver.baumgarte / h);
     for (DirectBlock& block : directBlocks) block.prepare(rows, nodes, rigid, h);
@@ -178,14 +180,25 @@ struct World::Impl final : bullet::SolverHooks {
     directBlocksStale = false;
   }
 
-  // A sleeping body is immovable to Tandem's rows. It wakes when a deformable anchored to it
-  // moves faster than the body's own sleeping threshold.
+  // A sleeping body is immovable to Tandem's rows. It wakes when any node of a deformable
+  // anchored to it moves faster than the body's own sleeping threshold.
   void wakeBodiesPulledByDeformables() {
     for (const AnchorRow& row : rows.anchors) {
       if (!bullet.isDynamic(row.body) || bullet.isAwake(row.body)) continue;
-      const double speed = row.deformableVelocity(nodes.velocity).norm();
-      if (speed > bullet.sleepingThreshold(row.body)) bullet.wake(row.body);
+      const DeformableRecord& body = deformableOfNode(row.node[0]);
+      const double threshold = bullet.sleepingThreshold(row.body);
+      for (int32_t n = body.firstNode; n < body.firstNode + body.nodeCount; ++n)
+        if (nodes.velocity[n].squaredNorm() > threshold * threshold) {
+          bullet.wake(row.body);
+          break;
+        }
     }
+  }
+
+  const DeformableRecord& deformableOfNode(int32_t node) const {
+    auto after = std::upper_bound(deformables.begin(), deformables.end(), node,
+                                  [](int32_t n, const DeformableRecord& record) { return n < record.firstNode; });
+    return *(after - 1);
   }
 
   // ---- Stage 5: interleaved solve (called from inside Bullet's solver) -------------------
@@ -218,20 +231,23 @@ struct World::Impl final : bullet::SolverHooks {
     for (FixedPointRow& row : rows.fixedPoints) row.previousTarget = row.target;
   }
 
-  Status checkFinite() const {
+  // A non-finite or absurdly fast state means the step diverged: say which body, and stop.
+  Status checkDiverged() const {
+    const double limit = settings.divergenceSpeed;
+    auto bad = [limit](const Vec3& x, const Vec3& v) { return !x.allFinite() || !v.allFinite() || v.norm() > limit; };
+    const std::string advice =
+        ": the simulation diverged (try a smaller time step, more iterations or softer springs)";
     for (const DeformableRecord& body : deformables)
       for (int32_t i = 0; i < body.nodeCount; ++i) {
         const int32_t n = body.firstNode + i;
-        if (!nodes.position[n].allFinite() || !nodes.velocity[n].allFinite())
+        if (bad(nodes.position[n], nodes.velocity[n]))
           return Error{"step " + std::to_string(steps) + ": deformable '" + body.name + "' node " + std::to_string(i) +
-                       " has a non-finite position or velocity: the simulation diverged (try a smaller time "
-                       "step, more iterations or softer springs)"};
+                       " has a non-finite or faster than " + str(limit) + " m/s state" + advice};
       }
     for (int b = 0; b < bullet.rigidBodyCount(); ++b)
-      if (!bullet.position(b).allFinite() || !bullet.linearVelocity(b).allFinite() ||
-          !bullet.angularVelocity(b).allFinite())
+      if (bad(bullet.position(b), bullet.linearVelocity(b)) || !bullet.angularVelocity(b).allFinite())
         return Error{"step " + std::to_string(steps) + ": rigid body '" + rigidNames[b] +
-                     "' has a non-finite state: the simulation diverged"};
+                     "' has a non-finite or faster than " + str(limit) + " m/s state" + advice};
     return {};
   }
 
@@ -309,6 +325,7 @@ Vec3 World::rigidAngularVelocity(RigidBodyId body) const { return m_impl->bullet
 double World::rigidMass(RigidBodyId body) const { return m_impl->bullet.mass(body.index); }
 bool World::rigidIsAwake(RigidBodyId body) const { return m_impl->bullet.isAwake(body.index); }
 void World::putRigidToSleep(RigidBodyId body) { m_impl->bullet.putToSleep(body.index); }
+void World::setRigidCanSleep(RigidBodyId body, bool canSleep) { m_impl->bullet.setCanSleep(body.index, canSleep); }
 
 Status World::setKinematicTarget(RigidBodyId body, const Vec3& position, const Quat& orientation) {
   if (!m_impl->validRigid(body)) return Error{"kinematic target: no rigid body with index " + std::to_string(body.index)};
@@ -502,7 +519,8 @@ Status World::step(double h) {
 
   w.computeUnconstrainedVelocities(h);  // 1. deformable models: unconstrained node velocities
   timed(Stage::Models);
-  w.bullet.predictRigidMotion(h);       // 2. Bullet: gravity and external forces on rigid bodies
+  w.wakeBodiesPulledByDeformables();    // 2. Bullet: gravity and external forces on rigid bodies
+  w.bullet.predictRigidMotion(h);
   timed(Stage::RigidPrediction);
   w.bullet.detectCollisions(h);         // 3. Bullet: rigid-rigid contacts
   timed(Stage::CollisionDetection);
@@ -520,7 +538,7 @@ Status World::step(double h) {
   for (double seconds : report.stageSeconds) report.totalSeconds += seconds;
   w.time += h;
   ++w.steps;
-  return w.checkFinite();
+  return w.checkDiverged();
 }
 
 const StepReport& World::lastReport() const { return m_impl->report; }

@@ -49,6 +49,9 @@ struct SolverSettings {
 struct WorldSettings {
   Vec3 gravity{0.0, -9.81, 0.0};  // m/s²
   SolverSettings solver;
+  // A node or rigid body faster than this (m/s), or with a non-finite state, means the
+  // simulation diverged: step() reports it instead of carrying on with garbage.
+  double divergenceSpeed = 1.0e4;
 };
 
 // ---- Rigid bodies (Bullet) ------------------------------------------------------------------
@@ -83,6 +86,9 @@ struct RigidBodyDesc {
   Vec3 angularVelocity = Vec3::Zero();  // rad/s, world frame
   double friction = 0.5;
   double restitution = 0.0;
+  // Bullet lets a body that has been slow for 2 s sleep: it stops moving and stops reporting
+  // contact forces. Turn this off for bodies whose forces you read.
+  bool canSleep = true;
 };
 
 // A revolute joint about `axis` through `pivot` (both world frame, at creation time),
@@ -180,6 +186,7 @@ class World {
   double rigidMass(RigidBodyId body) const;  // 0 for static and kinematic bodies
   bool rigidIsAwake(RigidBodyId body) const;
   void putRigidToSleep(RigidBodyId body);
+  void setRigidCanSleep(RigidBodyId body, bool canSleep);
   // Moves a kinematic body to this pose by the end of the next step (its velocity follows).
   Status setKinematicTarget(RigidBodyId body, const Vec3& position, const Quat& orientation);
   // Sum of the normal impulses (N·s) of Bullet's contacts between two rigid bodies in the last step.

@@ -169,6 +169,7 @@ int BulletWorld::addRigidBody(const RigidBodyDesc& desc) {
     body->setCollisionFlags(body->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
     body->setActivationState(DISABLE_DEACTIVATION);
   }
+  if (!desc.canSleep) body->setActivationState(DISABLE_DEACTIVATION);
   if (dynamic) {
     body->setLinearVelocity(toBt(desc.linearVelocity));
     body->setAngularVelocity(toBt(desc.angularVelocity));
@@ -273,12 +274,22 @@ double BulletWorld::mass(int body) const {
 }
 bool BulletWorld::isAwake(int body) const { return m_impl->bodies[body]->isActive(); }
 bool BulletWorld::isDynamic(int body) const { return m_impl->bodies[body]->getInvMass() > 0; }
-void BulletWorld::wake(int body) { m_impl->bodies[body]->activate(true); }
+void BulletWorld::wake(int body) {
+  btRigidBody& b = *m_impl->bodies[body];
+  if (b.getActivationState() == ISLAND_SLEEPING) b.forceActivationState(ACTIVE_TAG);
+  b.activate(true);
+}
 void BulletWorld::putToSleep(int body) {
   btRigidBody& b = *m_impl->bodies[body];
+  b.forceActivationState(ISLAND_SLEEPING);
   b.setLinearVelocity(btVector3(0, 0, 0));
   b.setAngularVelocity(btVector3(0, 0, 0));
-  b.setActivationState(ISLAND_SLEEPING);
+}
+void BulletWorld::setCanSleep(int body, bool canSleep) {
+  btRigidBody& b = *m_impl->bodies[body];
+  if (b.isKinematicObject()) return;  // kinematic bodies never sleep
+  b.forceActivationState(canSleep ? ACTIVE_TAG : DISABLE_DEACTIVATION);
+  b.activate(true);
 }
 void BulletWorld::setKinematicTarget(int body, const Vec3& position, const Quat& orientation) {
   m_impl->motionStates[body]->setWorldTransform(btTransform(toBt(orientation.normalized()), toBt(position)));

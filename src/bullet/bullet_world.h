@@ -60,6 +60,7 @@ class BulletWorld {
   bool isDynamic(int body) const;
   void wake(int body);
   void putToSleep(int body);
+  void setCanSleep(int body, bool canSleep);
   void setKinematicTarget(int body, const Vec3& position, const Quat& orientation);
   double contactImpulse(int bodyA, int bodyB) const;
   int manifoldCount() const;

@@ -111,6 +111,7 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
 
   // J and Jᵀ, and the compliance −E. Row r of the KKT system is m_dofCount + r.
   m_bias.resize(rowCount);
+  m_compliance.resize(rowCount);
   m_active.assign(rowCount, false);
   for (int32_t r = 0; r < rowCount; ++r) {
     const int32_t kktRow = m_dofCount + r;
@@ -158,7 +159,8 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
     }
     // A row that touches nothing movable is left out: unit compliance, zero right-hand side.
     m_active[r] = inverseMassSum > 0.0;
-    entries.emplace_back(kktRow, kktRow, m_active[r] ? -kRelativeCompliance * inverseMassSum : -1.0);
+    m_compliance[r] = m_active[r] ? kRelativeCompliance * inverseMassSum : 1.0;
+    entries.emplace_back(kktRow, kktRow, -m_compliance[r]);
   }
 
   const int32_t size = m_dofCount + rowCount;
@@ -209,6 +211,12 @@ void DirectBlock::solve(ConstraintRows& rows, SolverContext& ctx, SweepStats& st
   for (int32_t r = 0; r < rowCount; ++r)
     if (m_active[r]) m_rhs[m_dofCount + r] = -(rowVelocity(rows, m_rows[r], ctx) + m_bias[r]);
   m_solution = m_factor->solve(m_rhs);
+  // One step of iterative refinement: the first solve leaves J(v + Δv) + b = E y, a residual
+  // of the compliance alone; solving for it again removes all but O(ε²) of it.
+  m_rhs.head(m_dofCount).setZero();
+  for (int32_t r = 0; r < rowCount; ++r)
+    m_rhs[m_dofCount + r] = m_active[r] ? -m_compliance[r] * m_solution[m_dofCount + r] : 0.0;
+  m_solution += m_factor->solve(m_rhs);
 
   for (int32_t n = 0; n < m_nodeCount; ++n)
     if (m_nodeDof[n] >= 0) ctx.velocity[m_firstNode + n] += m_solution.segment<3>(m_nodeDof[n]);

@@ -16,7 +16,8 @@
 //   [ J  −E  ] [ −Δλ] = [ −(J v + b) ]       E = ε diag(J M⁻¹ Jᵀ), a tiny compliance that
 //                                              keeps redundant rows (a triangulated cloth) solvable
 //
-// so that J (v + Δv) = −b for every row at once, with Δv = H⁻¹ Jᵀ Δλ.
+// so that J (v + Δv) = −b for every row at once, with Δv = H⁻¹ Jᵀ Δλ. The compliance leaves
+// a residual E·(−Δλ); one refinement solve per sweep removes it to O(ε²).
 //
 // Geometric stiffness. A taut rope of light nodes holding a heavy body has sideways modes of
 // frequency √(T / m L); once h times that passes 2 the velocity-level linearisation, which
@@ -84,6 +85,7 @@ class DirectBlock {
   std::vector<int32_t> m_bodyDof;  // per entry of m_bodies: first degree of freedom, or −1 if immovable
   int32_t m_dofCount = 0;
   Eigen::VectorXd m_bias;
+  Eigen::VectorXd m_compliance;  // E, per row
   std::vector<bool> m_active;  // rows where nothing can move are left out of the solve
   // Eigen's factorisations cannot move; the block can.
   std::unique_ptr<Eigen::SimplicialLDLT<SparseMatrix>> m_factor = std::make_unique<Eigen::SimplicialLDLT<SparseMatrix>>();
