@@ -1,1 +1,170 @@
-int main() { return 0; }
+// Step cost of the built-in scenes, of the PGS sweep per row and iteration, and of direct
+// blocks against their size. Run: build/bench/tandem_bench (see docs/performance.md).
+#include <tandem/scenes.h>
+#include <tandem/world.h>
+
+#include <BulletSoftBody/btSoftBodyHelpers.h>
+#include <BulletSoftBody/btSoftBodyRigidBodyCollisionConfiguration.h>
+#include <BulletSoftBody/btSoftRigidDynamicsWorld.h>
+#include <btBulletDynamicsCommon.h>
+#include <benchmark/benchmark.h>
+
+#include <random>
+#include <stdexcept>
+#include <string>
+
+namespace {
+
+using namespace tandem;
+
+constexpr double kStep = 1.0 / 60.0;
+
+void check(const Status& status) {
+  if (!status) throw std::runtime_error(status.message());
+}
+
+// Counters: rows, and the stage split of the last step measured (Time is ms per step).
+void reportStep(benchmark::State& state, const World& world) {
+  const StepReport& report = world.lastReport();
+  state.counters["rows"] = report.totalRows();
+  state.counters["row_setup_ms"] = 1e3 * report.seconds(Stage::Rows);
+  state.counters["solve_ms"] = 1e3 * report.seconds(Stage::Solve);
+}
+
+void BM_BuiltinScene(benchmark::State& state, std::string name) {
+  World world;
+  check(findBuiltinScene(name)->build(world));
+  for (int step = 0; step < 60; ++step) check(world.step(kStep));  // past the first transient
+  for (auto _ : state) check(world.step(kStep));
+  reportStep(state, world);
+}
+
+// An n×n cloth with inextensibility and bending, every row in the PGS sweep, drifting in zero
+// gravity with small random velocities so the rows have work to do. Reports ns per
+// row-iteration: the interleaved solve's time over rows × iterations.
+void BM_IterativeClothSweep(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  World world;
+  WorldSettings settings = world.settings();
+  settings.gravity.setZero();
+  check(world.setSettings(settings));
+  DeformableDesc desc;
+  desc.name = "cloth";
+  desc.mesh = *makeClothGrid({0, 0, 0}, {1, 0, 0}, {0, 0, 1}, n, n, 0.5);
+  desc.inextensibility.enabled = true;
+  desc.bending.enabled = true;
+  desc.rowSolver = RowSolverKind::Iterative;
+  const DeformableId cloth = *world.addDeformable(desc);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-0.05, 0.05);
+  for (int node = 0; node < n * n; ++node) check(world.setNodeVelocity(cloth, node, {u(rng), u(rng), u(rng)}));
+  double solveSeconds = 0.0;
+  for (auto _ : state) {
+    check(world.step(kStep));
+    solveSeconds += world.lastReport().seconds(Stage::Solve);
+  }
+  reportStep(state, world);
+  const double rowIterations =
+      static_cast<double>(world.lastReport().totalRows()) * settings.solver.iterations * state.iterations();
+  state.counters["ns_per_row_iteration"] = 1e9 * solveSeconds / rowIterations;
+}
+BENCHMARK(BM_IterativeClothSweep)->Arg(21)->Arg(51)->Arg(101)->Unit(benchmark::kMillisecond);
+
+// A rope of n nodes (0.2 kg, 1 m) from a fixed point holding a 1 kg box, h = 1/60 s, 4
+// iterations: Tandem (one direct block) and Bullet's own soft body at the same settings. After
+// 5 s of simulation, the counters say how far the box hangs below where a 1 m rope puts it
+// and how much the rope has stretched.
+void BM_TandemRope(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  World world;
+  DeformableDesc desc;
+  desc.name = "rope";
+  desc.mesh = *makeRope({0, 2, 0}, {0, 1, 0}, n, 0.2);
+  desc.inextensibility.enabled = true;
+  desc.rowSolver = RowSolverKind::Direct;
+  const DeformableId rope = *world.addDeformable(desc);
+  RigidBodyDesc box;
+  box.name = "box";
+  box.shape = RigidShape::box({0.1, 0.1, 0.1});
+  box.position = {0, 0.9, 0};
+  box.canSleep = false;
+  const RigidBodyId load = *world.addRigidBody(box);
+  check(world.addFixedPoint(rope, 0, {0, 2, 0}).status());
+  check(world.addAnchor(AnchorDesc::node(rope, n - 1, load)).status());
+  for (int step = 0; step < 300; ++step) check(world.step(kStep));
+  double length = 0.0;
+  const auto x = world.nodePositions(rope);
+  for (size_t k = 1; k < x.size(); ++k) length += (x[k] - x[k - 1]).norm();
+  for (auto _ : state) check(world.step(kStep));
+  reportStep(state, world);
+  state.counters["box_drop_cm"] = 100.0 * (0.9 - world.rigidPosition(load).y());
+  state.counters["stretch_percent"] = 100.0 * (length - 1.0);
+}
+BENCHMARK(BM_TandemRope)->Arg(20)->Arg(50)->Arg(200)->Arg(1000)->Unit(benchmark::kMillisecond);
+
+void BM_BulletSoftRope(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  btSoftBodyRigidBodyCollisionConfiguration configuration;
+  btCollisionDispatcher dispatcher(&configuration);
+  btDbvtBroadphase broadphase;
+  btSequentialImpulseConstraintSolver solver;
+  btSoftRigidDynamicsWorld world(&dispatcher, &broadphase, &solver, &configuration);
+  world.setGravity(btVector3(0, -9.81, 0));
+  world.getSolverInfo().m_numIterations = 4;
+  btSoftBodyWorldInfo& info = world.getWorldInfo();
+  info.m_gravity = btVector3(0, -9.81, 0);
+  info.m_broadphase = &broadphase;
+  info.m_dispatcher = &dispatcher;
+  info.m_sparsesdf.Initialize();
+  btSoftBody* rope = btSoftBodyHelpers::CreateRope(info, btVector3(0, 2, 0), btVector3(0, 1, 0), n - 2, 1);
+  rope->setTotalMass(0.2);
+  rope->m_cfg.piterations = 4;
+  world.addSoftBody(rope);
+  btBoxShape shape(btVector3(0.1, 0.1, 0.1));
+  btVector3 inertia;
+  shape.calculateLocalInertia(1.0, inertia);
+  btDefaultMotionState motion(btTransform(btQuaternion::getIdentity(), btVector3(0, 0.9, 0)));
+  btRigidBody box(btRigidBody::btRigidBodyConstructionInfo(1.0, &motion, &shape, inertia));
+  box.setActivationState(DISABLE_DEACTIVATION);
+  world.addRigidBody(&box);
+  rope->appendAnchor(n - 1, &box);
+  for (int step = 0; step < 300; ++step) world.stepSimulation(kStep, 0, kStep);
+  double length = 0.0;
+  for (int k = 1; k < rope->m_nodes.size(); ++k) length += (rope->m_nodes[k].m_x - rope->m_nodes[k - 1].m_x).length();
+  for (auto _ : state) world.stepSimulation(kStep, 0, kStep);
+  state.counters["box_drop_cm"] = 100.0 * (0.9 - box.getCenterOfMassPosition().y());
+  state.counters["stretch_percent"] = 100.0 * (length - 1.0);
+  world.removeRigidBody(&box);
+  world.removeSoftBody(rope);
+  delete rope;
+}
+BENCHMARK(BM_BulletSoftRope)->Arg(20)->Arg(50)->Arg(200)->Arg(1000)->Unit(benchmark::kMillisecond);
+
+// An n×n cloth pinned along one edge, its bilateral rows in one direct block.
+void BM_DirectCloth(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  World world;
+  DeformableDesc desc;
+  desc.name = "cloth";
+  desc.mesh = *makeClothGrid({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, n, n, 0.5);
+  desc.inextensibility.enabled = true;
+  desc.rowSolver = RowSolverKind::Direct;
+  const DeformableId cloth = *world.addDeformable(desc);
+  for (int column = 0; column < n; ++column) check(world.fixNode(cloth, (n - 1) * n + column));
+  for (int step = 0; step < 10; ++step) check(world.step(kStep));
+  for (auto _ : state) check(world.step(kStep));
+  reportStep(state, world);
+}
+BENCHMARK(BM_DirectCloth)->Arg(11)->Arg(21)->Arg(31)->Unit(benchmark::kMillisecond);
+
+const bool kRegistered = [] {
+  for (const BuiltinScene& scene : builtinScenes())
+    benchmark::RegisterBenchmark(("BM_BuiltinScene/" + std::string(scene.name)).c_str(), BM_BuiltinScene,
+                                 std::string(scene.name))
+        ->Unit(benchmark::kMillisecond);
+  return true;
+}();
+
+}  // namespace
+
+BENCHMARK_MAIN();

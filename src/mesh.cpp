@@ -77,12 +77,17 @@ Status validateMesh(const DeformableMesh& mesh) {
       return Error{"node " + std::to_string(i) + " has mass " + str(m) + " kg; masses must be positive and finite"};
   }
   if (Status s = checkIndices(mesh.edges, n, "edge"); !s) return s;
+  if (Status s = checkIndices(mesh.shearEdges, n, "shear edge"); !s) return s;
   if (Status s = checkIndices(mesh.triangles, n, "triangle"); !s) return s;
   if (Status s = checkIndices(mesh.tetrahedra, n, "tetrahedron"); !s) return s;
   const auto& x = mesh.positions;
   for (size_t e = 0; e < mesh.edges.size(); ++e) {
     const double length = (x[mesh.edges[e][1]] - x[mesh.edges[e][0]]).norm();
     if (length < 1e-9) return Error{"edge " + std::to_string(e) + " has zero length"};
+  }
+  for (size_t e = 0; e < mesh.shearEdges.size(); ++e) {
+    const double length = (x[mesh.shearEdges[e][1]] - x[mesh.shearEdges[e][0]]).norm();
+    if (length < 1e-9) return Error{"shear edge " + std::to_string(e) + " has zero length"};
   }
   for (size_t t = 0; t < mesh.triangles.size(); ++t) {
     const auto& f = mesh.triangles[t];
@@ -140,11 +145,11 @@ Result<DeformableMesh> makeClothGrid(const Vec3& corner, const Vec3& sideU, cons
         if ((c + r) % 2 == 0) {
           mesh.triangles.push_back({id(c, r), id(c + 1, r), id(c + 1, r + 1)});
           mesh.triangles.push_back({id(c, r), id(c + 1, r + 1), id(c, r + 1)});
-          edges.push_back({id(c, r), id(c + 1, r + 1)});
+          mesh.shearEdges.push_back({id(c, r), id(c + 1, r + 1)});
         } else {
           mesh.triangles.push_back({id(c, r), id(c + 1, r), id(c, r + 1)});
           mesh.triangles.push_back({id(c + 1, r), id(c + 1, r + 1), id(c, r + 1)});
-          edges.push_back({id(c + 1, r), id(c, r + 1)});
+          mesh.shearEdges.push_back({id(c + 1, r), id(c, r + 1)});
         }
       }
     }

@@ -166,14 +166,42 @@ struct World::Impl final : bullet::SolverHooks {
     report.rowCounts = rows.countRows();
   }
 
+  // One block per group of deformables tied together through dynamic rigid bodies by anchors
+  // (union-find over deformables), so that a body shared by several of them is solved with
+  // all of them at once.
   void buildDirectBlocks() {
     directBlocks.clear();
-    for (const DeformableRecord& body : deformables) {
-      if (body.rowSolver == RowSolverKind::Iterative) continue;
-      DirectBlock block(body.firstNode, body.nodeCount);
+    std::vector<int32_t> group(deformables.size());
+    for (size_t d = 0; d < group.size(); ++d) group[d] = static_cast<int32_t>(d);
+    auto root = [&](int32_t d) {
+      while (group[d] != d) d = group[d] = group[group[d]];
+      return d;
+    };
+    std::vector<int32_t> firstDeformableOnBody(bullet.rigidBodyCount(), -1);
+    for (const AnchorRow& row : rows.anchors) {
+      const auto deformable = static_cast<int32_t>(&deformableOfNode(row.node[0]) - deformables.data());
+      if (deformables[deformable].rowSolver == RowSolverKind::Iterative || !bullet.isDynamic(row.body)) continue;
+      int32_t& other = firstDeformableOnBody[row.body];
+      if (other < 0)
+        other = deformable;
+      else
+        group[root(deformable)] = root(other);
+    }
+    for (size_t d = 0; d < deformables.size(); ++d) {
+      if (root(static_cast<int32_t>(d)) != static_cast<int32_t>(d)) continue;
+      std::vector<DirectBlock::NodeRange> ranges;
+      bool forced = false, allowed = true;
+      for (size_t member = 0; member < deformables.size(); ++member) {
+        if (root(static_cast<int32_t>(member)) != static_cast<int32_t>(d)) continue;
+        const DeformableRecord& record = deformables[member];
+        forced |= record.rowSolver == RowSolverKind::Direct;
+        allowed &= record.rowSolver != RowSolverKind::Iterative;
+        ranges.push_back({record.firstNode, record.nodeCount});
+      }
+      if (!allowed) continue;
+      DirectBlock block(std::move(ranges));
       block.collectRows(rows);
-      if (block.scalarRowCount() == 0) continue;
-      if (body.rowSolver == RowSolverKind::Auto && block.scalarRowCount() > kAutoDirectRowLimit) continue;
+      if (block.scalarRowCount() == 0 || (!forced && block.scalarRowCount() > kAutoDirectRowLimit)) continue;
       block.claimRows(rows);
       directBlocks.push_back(std::move(block));
     }
@@ -366,20 +394,21 @@ Result<DeformableId> World::addDeformable(const DeformableDesc& desc) {
     w.nodes.force.push_back(Vec3::Zero());
     w.nodes.inverseMass.push_back(1.0 / mesh.masses[i]);
   }
-  for (const auto& e : mesh.edges) {
+  auto addEdge = [&](const std::array<int32_t, 2>& e, bool inextensible) {
     const double restLength = (mesh.positions[e[1]] - mesh.positions[e[0]]).norm();
     if (springs.stiffness > 0 || springs.damping > 0)
       w.springs.push_back({first + e[0], first + e[1], restLength, springs.stiffness, springs.damping});
-    if (desc.inextensibility.enabled) {
-      InextensibilityRow row;
-      row.node = {first + e[0], first + e[1]};
-      row.restLength = restLength;
-      const auto bounds = inextensibilityForceBounds(desc.inextensibility.mode, desc.inextensibility.maxForce);
-      row.lambdaMin = bounds[0];
-      row.lambdaMax = bounds[1];
-      w.rows.inextensibility.push_back(row);
-    }
-  }
+    if (!inextensible) return;
+    InextensibilityRow row;
+    row.node = {first + e[0], first + e[1]};
+    row.restLength = restLength;
+    const auto bounds = inextensibilityForceBounds(desc.inextensibility.mode, desc.inextensibility.maxForce);
+    row.lambdaMin = bounds[0];
+    row.lambdaMax = bounds[1];
+    w.rows.inextensibility.push_back(row);
+  };
+  for (const auto& e : mesh.edges) addEdge(e, desc.inextensibility.enabled);
+  for (const auto& e : mesh.shearEdges) addEdge(e, desc.inextensibility.enabled && desc.inextensibility.shearEdges);
   if (desc.bending.enabled) {
     for (const EdgeHinge& hinge : findEdgeHinges(mesh.triangles)) {
       BendingRow row;

@@ -28,12 +28,13 @@ TEST(Mesh, ClothGridCountsAndHinges) {
   EXPECT_EQ(cloth->nodeCount(), columns * rows);
   const size_t structural = columns * (rows - 1) + rows * (columns - 1);
   const size_t diagonals = (columns - 1) * (rows - 1);
-  EXPECT_EQ(cloth->edges.size(), structural + diagonals);
+  EXPECT_EQ(cloth->edges.size(), structural);
+  EXPECT_EQ(cloth->shearEdges.size(), diagonals);
   EXPECT_EQ(cloth->triangles.size(), 2 * diagonals);
   EXPECT_NEAR(totalMass(*cloth), 0.3, 1e-12);
   // Every edge not on the boundary is shared by two triangles and makes one hinge.
   const size_t boundary = 2 * (columns - 1) + 2 * (rows - 1);
-  EXPECT_EQ(findEdgeHinges(cloth->triangles).size(), cloth->edges.size() - boundary);
+  EXPECT_EQ(findEdgeHinges(cloth->triangles).size(), structural + diagonals - boundary);
   // Triangles are consistently wound: all normals point the same way.
   for (const auto& t : cloth->triangles) {
     const Vec3 normal = (cloth->positions[t[1]] - cloth->positions[t[0]]).cross(cloth->positions[t[2]] - cloth->positions[t[0]]);

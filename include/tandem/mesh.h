@@ -17,6 +17,10 @@ struct DeformableMesh {
   std::vector<Vec3> positions;           // metres, world frame
   std::vector<double> masses;            // kilograms per node, each > 0 (World::fixNode pins a node)
   std::vector<std::array<int32_t, 2>> edges;
+  // Edges that only resist shear, like a cloth grid's diagonals. Springs act on them; rows of
+  // inextensibility only when asked for (InextensibilitySettings::shearEdges), because on a
+  // flat triangulated sheet they over-determine the in-plane motion.
+  std::vector<std::array<int32_t, 2>> shearEdges;
   std::vector<std::array<int32_t, 3>> triangles;  // surface faces, counter-clockwise seen from outside
   std::vector<std::array<int32_t, 4>> tetrahedra;
 
@@ -31,8 +35,8 @@ Status validateMesh(const DeformableMesh& mesh);
 Result<DeformableMesh> makeRope(const Vec3& start, const Vec3& end, int nodeCount, double totalMass);
 
 // A rectangular cloth of `columns` x `rows` nodes spanning `corner` to `corner + sideU + sideV`,
-// with structural edges along both grid directions and alternating-diagonal triangles (the
-// diagonals are edges too). Node (column c, row r) has index r * columns + c.
+// with structural edges along both grid directions, alternating-diagonal triangles, and the
+// diagonals as shear edges. Node (column c, row r) has index r * columns + c.
 Result<DeformableMesh> makeClothGrid(const Vec3& corner, const Vec3& sideU, const Vec3& sideV,
                                      int columns, int rows, double totalMass);
 

@@ -113,6 +113,7 @@ struct InextensibilitySettings {
   bool enabled = false;
   InextensibilityMode mode = InextensibilityMode::ResistBoth;
   double maxForce = kUnbounded;  // N; the impulse bound per step is maxForce·h
+  bool shearEdges = false;       // also on the mesh's shear edges (a cloth's diagonals)
 };
 
 struct BendingSettings {

@@ -9,16 +9,39 @@ namespace {
 
 // E = ε · diag(J M⁻¹ Jᵀ): small enough not to soften the rows measurably, large enough that
 // redundant rows with slightly inconsistent errors get bounded impulses.
-constexpr double kRelativeCompliance = 1e-4;
+constexpr double kRelativeCompliance = 1e-9;
+// h² K_g per edge is at most this multiple of its lighter node's mass.
+constexpr double kMaxStiffnessToMass = 100;
 
 bool isUnbounded(double maxForce) { return std::isinf(maxForce); }
 
 }  // namespace
 
+DirectBlock::DirectBlock(std::vector<NodeRange> ranges) : m_ranges(std::move(ranges)) {
+  for (const NodeRange& range : m_ranges) m_nodeCount += range.count;
+}
+
+int32_t DirectBlock::localNode(int32_t node) const {
+  int32_t offset = 0;
+  for (const NodeRange& range : m_ranges) {
+    if (node >= range.first && node < range.first + range.count) return offset + node - range.first;
+    offset += range.count;
+  }
+  return -1;
+}
+
+int32_t DirectBlock::globalNode(int32_t local) const {
+  for (const NodeRange& range : m_ranges) {
+    if (local < range.count) return range.first + local;
+    local -= range.count;
+  }
+  return -1;
+}
+
 void DirectBlock::collectRows(const ConstraintRows& rows) {
   m_rows.clear();
   m_bodies.clear();
-  auto ownsNode = [this](int32_t node) { return node >= m_firstNode && node < m_firstNode + m_nodeCount; };
+  auto ownsNode = [this](int32_t node) { return localNode(node) >= 0; };
   for (size_t i = 0; i < rows.fixedPoints.size(); ++i) {
     const FixedPointRow& row = rows.fixedPoints[i];
     if (!ownsNode(row.node) || !isUnbounded(row.maxForce)) continue;
@@ -55,7 +78,7 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
   m_nodeDof.assign(m_nodeCount, -1);
   m_dofCount = 0;
   for (int32_t n = 0; n < m_nodeCount; ++n)
-    if (nodes.inverseMass[m_firstNode + n] > 0) {
+    if (nodes.inverseMass[globalNode(n)] > 0) {
       m_nodeDof[n] = m_dofCount;
       m_dofCount += 3;
     }
@@ -65,7 +88,7 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
       m_bodyDof[b] = m_dofCount;
       m_dofCount += 6;
     }
-  auto nodeDof = [&](int32_t node) { return m_nodeDof[node - m_firstNode]; };
+  auto nodeDof = [&](int32_t node) { return m_nodeDof[localNode(node)]; };
   auto bodyDof = [&](int32_t body) {
     return m_bodyDof[std::find(m_bodies.begin(), m_bodies.end(), body) - m_bodies.begin()];
   };
@@ -77,7 +100,7 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
   // H = M + h² K_g
   for (int32_t n = 0; n < m_nodeCount; ++n) {
     if (m_nodeDof[n] < 0) continue;
-    const double mass = 1.0 / nodes.inverseMass[m_firstNode + n];
+    const double mass = 1.0 / nodes.inverseMass[globalNode(n)];
     for (int32_t c = 0; c < 3; ++c) entries.emplace_back(m_nodeDof[n] + c, m_nodeDof[n] + c, mass);
   }
   for (size_t b = 0; b < m_bodies.size(); ++b) {
@@ -90,6 +113,7 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
       for (int32_t c = 0; c < 3; ++c) entries.emplace_back(dof + 3 + r, dof + 3 + c, inertia(r, c));
     }
   }
+  m_stiffness.clear();
   // Every edge gets its entries, zero when slack, so the sparsity pattern stays the same from
   // step to step and the ordering and symbolic analysis are done once.
   for (const BlockRowRef& ref : m_rows) {
@@ -97,9 +121,15 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
     const InextensibilityRow& row = rows.inextensibility[ref.index];
     const bool taut = row.lambda < 0 && row.effectiveMass != 0.0;
     const Vec3 n = row.jacobian[1];
-    const Mat3 g = taut ? Mat3((timeStep * -row.lambda / row.restLength) * (Mat3::Identity() - n * n.transpose()))
-                        : Mat3::Zero();
+    // Bounded at kMaxStiffnessToMass times the lighter node's mass: enough to hold the sideways
+    // modes still, and it keeps the huge impulses redundant rows can carry (a cloth's
+    // over-determined rows absorb small inconsistencies in their errors as a null-space impulse
+    // that moves nothing) from turning into a huge stiffness.
+    const double lighter = 1.0 / std::max(nodes.inverseMass[row.node[0]], nodes.inverseMass[row.node[1]]);
+    const double stiffness = std::min(timeStep * -row.lambda / row.restLength, kMaxStiffnessToMass * lighter);
+    const Mat3 g = taut ? Mat3(stiffness * (Mat3::Identity() - n * n.transpose())) : Mat3::Zero();
     const std::array<int32_t, 2> dof{nodeDof(row.node[0]), nodeDof(row.node[1])};
+    if (taut) m_stiffness.push_back({dof[0], dof[1], g});
     for (int a = 0; a < 2; ++a)
       for (int b = 0; b < 2; ++b) {
         if (dof[a] < 0 || dof[b] < 0) continue;
@@ -110,6 +140,8 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
   }
 
   // J and Jᵀ, and the compliance −E. Row r of the KKT system is m_dofCount + r.
+  std::vector<Eigen::Triplet<double>> transposed;
+  transposed.reserve(static_cast<size_t>(rowCount) * 8);
   m_bias.resize(rowCount);
   m_compliance.resize(rowCount);
   m_active.assign(rowCount, false);
@@ -121,6 +153,7 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
       for (int32_t c = 0; c < 3; ++c) {
         entries.emplace_back(kktRow, dof + c, j[c]);
         entries.emplace_back(dof + c, kktRow, j[c]);
+        transposed.emplace_back(dof + c, r, j[c]);
       }
       inverseMassSum += inverseMass * j.squaredNorm();
     };
@@ -161,6 +194,18 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
     m_active[r] = inverseMassSum > 0.0;
     m_compliance[r] = m_active[r] ? kRelativeCompliance * inverseMassSum : 1.0;
     entries.emplace_back(kktRow, kktRow, -m_compliance[r]);
+  }
+
+  m_jacobianT.resize(m_dofCount, rowCount);
+  m_jacobianT.setFromTriplets(transposed.begin(), transposed.end());
+  m_inverseMass.resize(m_dofCount);
+  for (int32_t n = 0; n < m_nodeCount; ++n)
+    if (m_nodeDof[n] >= 0) m_inverseMass.segment<3>(m_nodeDof[n]).setConstant(nodes.inverseMass[globalNode(n)]);
+  m_bodyInverseInertia.resize(m_bodies.size());
+  for (size_t b = 0; b < m_bodies.size(); ++b) {
+    if (m_bodyDof[b] < 0) continue;
+    m_inverseMass.segment<3>(m_bodyDof[b]).setConstant(rigid[m_bodies[b]].inverseMass);
+    m_bodyInverseInertia[b] = rigid[m_bodies[b]].inverseInertia;
   }
 
   const int32_t size = m_dofCount + rowCount;
@@ -218,16 +263,30 @@ void DirectBlock::solve(ConstraintRows& rows, SolverContext& ctx, SweepStats& st
     m_rhs[m_dofCount + r] = m_active[r] ? -m_compliance[r] * m_solution[m_dofCount + r] : 0.0;
   m_solution += m_factor->solve(m_rhs);
 
+  // Velocities from the impulses, M Δv = Jᵀ Δλ − h² K_g Δv, with Δv in the stiffness term taken
+  // from the solve: the stiffness forces cancel in pairs, so momentum changes by exactly Jᵀ Δλ
+  // whatever the solve's rounding.
+  const auto deltaLambda = -m_solution.tail(rowCount);
+  const auto solvedVelocity = m_solution.head(m_dofCount);
+  m_impulse = m_jacobianT * deltaLambda;
+  for (const EdgeStiffness& edge : m_stiffness) {
+    const Vec3 a = edge.dofA >= 0 ? Vec3(solvedVelocity.segment<3>(edge.dofA)) : Vec3::Zero();  // pinned: 0
+    const Vec3 b = edge.dofB >= 0 ? Vec3(solvedVelocity.segment<3>(edge.dofB)) : Vec3::Zero();
+    const Vec3 force = edge.g * (a - b);
+    if (edge.dofA >= 0) m_impulse.segment<3>(edge.dofA) -= force;
+    if (edge.dofB >= 0) m_impulse.segment<3>(edge.dofB) += force;
+  }
   for (int32_t n = 0; n < m_nodeCount; ++n)
-    if (m_nodeDof[n] >= 0) ctx.velocity[m_firstNode + n] += m_solution.segment<3>(m_nodeDof[n]);
+    if (m_nodeDof[n] >= 0)
+      ctx.velocity[globalNode(n)] += m_inverseMass[m_nodeDof[n]] * m_impulse.segment<3>(m_nodeDof[n]);
   for (size_t b = 0; b < m_bodies.size(); ++b) {
     if (m_bodyDof[b] < 0) continue;
     RigidSolverState& body = ctx.rigid[m_bodies[b]];
-    body.linearVelocity += m_solution.segment<3>(m_bodyDof[b]);
-    body.angularVelocity += m_solution.segment<3>(m_bodyDof[b] + 3);
+    body.linearVelocity += m_inverseMass[m_bodyDof[b]] * m_impulse.segment<3>(m_bodyDof[b]);
+    body.angularVelocity += m_bodyInverseInertia[b] * m_impulse.segment<3>(m_bodyDof[b] + 3);
   }
   for (int32_t r = 0; r < rowCount; ++r) {
-    const double delta = -m_solution[m_dofCount + r];
+    const double delta = deltaLambda[r];
     const BlockRowRef& ref = m_rows[r];
     switch (ref.type) {
       case RowType::FixedPoint: rows.fixedPoints[ref.index].lambda[ref.component] += delta; break;

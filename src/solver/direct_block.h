@@ -1,5 +1,7 @@
-// A direct block: every bilateral, unbounded row of one deformable body, solved exactly
-// together in each sweep (block Gauss-Seidel with one large block).
+// A direct block: every bilateral, unbounded row of a group of deformables, solved exactly
+// together in each sweep (block Gauss-Seidel with one large block per group). A group is the
+// deformables that anchors tie to the same dynamic rigid bodies, with those bodies: a rod
+// hung on two ropes with a curtain on it is one block, so one sweep solves all of it.
 //
 // Why. Projected Gauss-Seidel converges at a rate that falls with the mass ratio across a
 // chain of rows times the square of its length: a 10 g-per-node rope holding a 1 kg box needs
@@ -9,7 +11,7 @@
 //
 // What. For the block's scalar rows (fixed points and anchors contribute three each,
 // inextensibility one) with Jacobian J over the block's movable degrees of freedom (three per
-// free node of the body, six per dynamic rigid body it is anchored to) and mass matrix M
+// free node, six per dynamic rigid body the group is anchored to) and mass matrix M
 // (m I per node; m I and the world inertia per rigid body), each sweep solves
 //
 //   [ H   Jᵀ ] [ Δv ]   [     0      ]       H = M + h² K_g
@@ -54,7 +56,12 @@ struct BlockRowRef {
 
 class DirectBlock {
  public:
-  DirectBlock(int32_t firstNode, int32_t nodeCount) : m_firstNode(firstNode), m_nodeCount(nodeCount) {}
+  // The nodes of the deformables in the block: ranges of global node indices.
+  struct NodeRange {
+    int32_t first;
+    int32_t count;
+  };
+  explicit DirectBlock(std::vector<NodeRange> ranges);
 
   // Finds every bilateral unbounded row on the body's nodes. Call again when rows are added.
   void collectRows(const ConstraintRows& rows);
@@ -76,12 +83,12 @@ class DirectBlock {
  private:
   using SparseMatrix = Eigen::SparseMatrix<double>;
 
-  int32_t m_firstNode;
-  int32_t m_nodeCount;
+  std::vector<NodeRange> m_ranges;
+  int32_t m_nodeCount = 0;  // over all ranges
   std::vector<BlockRowRef> m_rows;
   std::vector<int32_t> m_bodies;  // rigid bodies the block's anchors hold
 
-  std::vector<int32_t> m_nodeDof;  // per node of the body: its first degree of freedom, or −1 if pinned
+  std::vector<int32_t> m_nodeDof;  // per node of the block: its first degree of freedom, or −1 if pinned
   std::vector<int32_t> m_bodyDof;  // per entry of m_bodies: first degree of freedom, or −1 if immovable
   int32_t m_dofCount = 0;
   Eigen::VectorXd m_bias;
@@ -92,8 +99,18 @@ class DirectBlock {
   bool m_factorOk = false;
   std::vector<int32_t> m_analysedLayout;  // the degrees of freedom the ordering was computed for
   Eigen::Index m_analysedNonZeros = -1;
-  Eigen::VectorXd m_rhs, m_solution;
+  Eigen::VectorXd m_rhs, m_solution, m_impulse;
+  SparseMatrix m_jacobianT;         // Jᵀ: dofs × rows
+  Eigen::VectorXd m_inverseMass;    // per degree of freedom (linear ones; nodes and bodies)
+  std::vector<Mat3> m_bodyInverseInertia;
+  struct EdgeStiffness {
+    int32_t dofA, dofB;  // −1 for a pinned node
+    Mat3 g;              // h² K_g of the edge
+  };
+  std::vector<EdgeStiffness> m_stiffness;  // taut edges this step
 
+  int32_t localNode(int32_t node) const;  // index among the block's nodes, or −1
+  int32_t globalNode(int32_t local) const;
   double rowVelocity(const ConstraintRows& rows, const BlockRowRef& ref, const SolverContext& ctx) const;
 };
 
