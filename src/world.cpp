@@ -208,11 +208,17 @@ struct World::Impl final : bullet::SolverHooks {
     directBlocksStale = false;
   }
 
-  // A sleeping body is immovable to Tandem's rows. It wakes when any node of a deformable
-  // anchored to it moves faster than the body's own sleeping threshold.
-  void wakeBodiesPulledByDeformables() {
+  // Bullet's islands do not know about anchors, so Tandem decides sleep for anchored bodies:
+  // an awake one does not fall asleep on its own (it keeps carrying, and reporting, its load);
+  // a sleeping one (put to sleep on purpose) is immovable to Tandem's rows and wakes when any
+  // node of a deformable anchored to it moves faster than the body's sleeping threshold.
+  void manageSleepOfAnchoredBodies() {
     for (const AnchorRow& row : rows.anchors) {
-      if (!bullet.isDynamic(row.body) || bullet.isAwake(row.body)) continue;
+      if (!bullet.isDynamic(row.body)) continue;
+      if (bullet.isAwake(row.body)) {
+        bullet.restartSleepTimer(row.body);
+        continue;
+      }
       const DeformableRecord& body = deformableOfNode(row.node[0]);
       const double threshold = bullet.sleepingThreshold(row.body);
       for (int32_t n = body.firstNode; n < body.firstNode + body.nodeCount; ++n)
@@ -548,7 +554,7 @@ Status World::step(double h) {
 
   w.computeUnconstrainedVelocities(h);  // 1. deformable models: unconstrained node velocities
   timed(Stage::Models);
-  w.wakeBodiesPulledByDeformables();    // 2. Bullet: gravity and external forces on rigid bodies
+  w.manageSleepOfAnchoredBodies();      // 2. Bullet: gravity and external forces on rigid bodies
   w.bullet.predictRigidMotion(h);
   timed(Stage::RigidPrediction);
   w.bullet.detectCollisions(h);         // 3. Bullet: rigid-rigid contacts

@@ -27,7 +27,6 @@ TEST(HangingRope, HoldsAOneKilogramBoxWithoutStretching) {
   ASSERT_EQ(world.settings().solver.iterations, 4);
   const DeformableId rope = *world.findDeformable("rope");
   const RigidBodyId box = *world.findRigidBody("box");
-  world.setRigidCanSleep(box, false);  // a sleeping box has no weight to report
   double worstStretch = 0.0;
   for (int step = 0; step < 300; ++step) {  // 5 s
     ASSERT_TRUE(world.step(kStep).ok());

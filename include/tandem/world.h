@@ -87,7 +87,9 @@ struct RigidBodyDesc {
   double friction = 0.5;
   double restitution = 0.0;
   // Bullet lets a body that has been slow for 2 s sleep: it stops moving and stops reporting
-  // contact forces. Turn this off for bodies whose forces you read.
+  // contact forces. Turn this off for bodies whose contact forces you read. (A body anchored
+  // to a deformable never falls asleep on its own; put to sleep, it wakes when the deformable
+  // moves.)
   bool canSleep = true;
 };
 

@@ -279,6 +279,7 @@ void BulletWorld::wake(int body) {
   if (b.getActivationState() == ISLAND_SLEEPING) b.forceActivationState(ACTIVE_TAG);
   b.activate(true);
 }
+void BulletWorld::restartSleepTimer(int body) { m_impl->bodies[body]->setDeactivationTime(0); }
 void BulletWorld::putToSleep(int body) {
   btRigidBody& b = *m_impl->bodies[body];
   b.forceActivationState(ISLAND_SLEEPING);

@@ -59,6 +59,7 @@ class BulletWorld {
   bool isAwake(int body) const;
   bool isDynamic(int body) const;
   void wake(int body);
+  void restartSleepTimer(int body);  // an awake body stays awake at least another 2 s
   void putToSleep(int body);
   void setCanSleep(int body, bool canSleep);
   void setKinematicTarget(int body, const Vec3& position, const Quat& orientation);
