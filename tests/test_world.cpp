@@ -1,0 +1,209 @@
+// The world's parts one at a time: rigid shapes and joints, moving fixed points, the bound modes
+// of inextensibility and bending, and the mass-spring model.
+#include "constraints/bending.h"
+
+#include <tandem/world.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace tandem {
+namespace {
+
+constexpr double kStep = 1.0 / 60.0;
+constexpr double kPi = 3.14159265358979323846;
+
+RigidBodyDesc body(std::string name, const RigidShape& shape, const Vec3& position,
+                   const Quat& orientation = Quat::Identity()) {
+  RigidBodyDesc desc;
+  desc.name = std::move(name);
+  desc.shape = shape;
+  desc.position = position;
+  desc.orientation = orientation;
+  return desc;
+}
+
+// Every shape, dropped on a static plane, comes to rest with its lowest point on the plane:
+// the shapes reach Bullet with the sizes and axes Tandem documents.
+TEST(World, EveryRigidShapeRestsOnThePlaneAtItsSize) {
+  World world;
+  RigidBodyDesc ground = body("ground", RigidShape::plane({0, 1, 0}, 0), Vec3::Zero());
+  ground.motion = MotionType::Static;
+  ASSERT_TRUE(world.addRigidBody(ground).ok());
+  const Quat lying(Eigen::AngleAxisd(kPi / 2, Vec3::UnitZ()));
+  const RigidBodyId box = *world.addRigidBody(body("box", RigidShape::box({0.2, 0.15, 0.3}), {0, 1, 0}));
+  const RigidBodyId sphere = *world.addRigidBody(body("sphere", RigidShape::sphere(0.25), {2, 1, 0}));
+  const RigidBodyId cylinder = *world.addRigidBody(body("cylinder", RigidShape::cylinder(0.3, 0.4), {4, 1, 0}));
+  const RigidBodyId capsule =
+      *world.addRigidBody(body("capsule", RigidShape::capsule(0.1, 0.3), {6, 1, 0}, lying));
+  for (int step = 0; step < 180; ++step) ASSERT_TRUE(world.step(kStep).ok());
+  const double tolerance = 0.01;  // Bullet's collision margin and contact slop
+  EXPECT_NEAR(world.rigidPosition(box).y(), 0.15, tolerance);
+  EXPECT_NEAR(world.rigidPosition(sphere).y(), 0.25, tolerance);
+  EXPECT_NEAR(world.rigidPosition(cylinder).y(), 0.4, tolerance);  // upright: axis along y
+  EXPECT_NEAR(world.rigidPosition(capsule).y(), 0.1, tolerance);   // lying: rests on its radius
+  for (RigidBodyId id : {box, sphere, cylinder, capsule}) EXPECT_LT(world.rigidLinearVelocity(id).norm(), 0.01);
+  EXPECT_NEAR(world.rigidMass(box), 1.0, 1e-12);
+}
+
+TEST(World, HingeBetweenTwoBodiesKeepsTheirPivotsTogether) {
+  World world;
+  const RigidBodyId upper = *world.addRigidBody(body("upper", RigidShape::box({0.05, 0.25, 0.05}), {0, 1.75, 0}));
+  const RigidBodyId lower = *world.addRigidBody(body("lower", RigidShape::box({0.05, 0.25, 0.05}), {0.25, 1.5, 0},
+                                                     Quat(Eigen::AngleAxisd(kPi / 2, Vec3::UnitZ()))));
+  ASSERT_TRUE(world.addHinge({upper, std::nullopt, {0, 2, 0}, {0, 0, 1}}).ok());
+  ASSERT_TRUE(world.addHinge({upper, lower, {0, 1.5, 0}, {0, 0, 1}}).ok());
+  const Vec3 upperLocal = Vec3(0, -0.25, 0), lowerLocal = Vec3(0, 0.25, 0);  // the pivot in each body
+  for (int step = 0; step < 120; ++step) {
+    ASSERT_TRUE(world.step(kStep).ok());
+    const Vec3 a = world.rigidPosition(upper) + world.rigidOrientation(upper) * upperLocal;
+    const Vec3 b = world.rigidPosition(lower) + world.rigidOrientation(lower) * lowerLocal;
+    // Bullet's velocity-level joints drift by about h²ω²r per step before its error reduction
+    // pulls them back: ~1 cm for this pendulum at 60 Hz, whatever the iteration count.
+    EXPECT_LT((a - b).norm(), 0.02) << "step " << step;
+    EXPECT_LT(std::abs(world.rigidPosition(lower).z()), 1e-6);  // both turn about z only
+  }
+  EXPECT_GT(world.rigidAngularVelocity(lower).norm(), 0.1);  // the double pendulum swings
+}
+
+TEST(World, FixedPointFollowsAMovingTarget) {
+  World world;
+  DeformableDesc rope;
+  rope.name = "rope";
+  rope.mesh = *makeRope({0.5, 2, 0}, {0.5, 1.5, 0}, 6, 0.06);
+  rope.inextensibility.enabled = true;
+  const DeformableId id = *world.addDeformable(rope);
+  const FixedPointId grip = *world.addFixedPoint(id, 0, {0.5, 2, 0});
+  double worst = 0.0;
+  for (int step = 1; step <= 120; ++step) {  // a circle of radius 0.5 m in 2 s
+    const double angle = kPi * step * kStep;
+    const Vec3 target(0.5 * std::cos(angle), 2.0, 0.5 * std::sin(angle));
+    ASSERT_TRUE(world.setFixedPointTarget(grip, target).ok());
+    ASSERT_TRUE(world.step(kStep).ok());
+    worst = std::max(worst, (world.nodePositions(id)[0] - target).norm());
+  }
+  EXPECT_LT(worst, 1e-6);  // the target's velocity is in the bias: no lag
+}
+
+// Two nodes joined by one inextensibility row and driven towards or away from each other.
+double separationAfterDriving(InextensibilityMode mode, double approachSpeed) {
+  World world;
+  WorldSettings settings = world.settings();
+  settings.gravity.setZero();
+  EXPECT_TRUE(world.setSettings(settings).ok());
+  DeformableDesc pair;
+  pair.name = "pair";
+  pair.mesh = *makeRope({0, 0, 0}, {1, 0, 0}, 2, 0.2);
+  pair.inextensibility.enabled = true;
+  pair.inextensibility.mode = mode;
+  const DeformableId id = *world.addDeformable(pair);
+  EXPECT_TRUE(world.setNodeVelocity(id, 0, {approachSpeed, 0, 0}).ok());
+  EXPECT_TRUE(world.setNodeVelocity(id, 1, {-approachSpeed, 0, 0}).ok());
+  for (int step = 0; step < 10; ++step) EXPECT_TRUE(world.step(kStep).ok());
+  const auto x = world.nodePositions(id);
+  return (x[1] - x[0]).norm();
+}
+
+TEST(World, InextensibilityBoundModes) {
+  const double drift = 2 * 0.5 * 10 * kStep;  // how far 0.5 m/s each way moves in 10 steps
+  // Both ways: neither closer nor further.
+  EXPECT_NEAR(separationAfterDriving(InextensibilityMode::ResistBoth, 0.5), 1.0, 1e-6);
+  EXPECT_NEAR(separationAfterDriving(InextensibilityMode::ResistBoth, -0.5), 1.0, 1e-6);
+  // Resist compression: pushing together is stopped, pulling apart is free.
+  EXPECT_NEAR(separationAfterDriving(InextensibilityMode::ResistCompression, 0.5), 1.0, 1e-6);
+  EXPECT_NEAR(separationAfterDriving(InextensibilityMode::ResistCompression, -0.5), 1.0 + drift, 1e-9);
+  // Resist stretch (a rope): pulling apart is stopped, pushing together is free.
+  EXPECT_NEAR(separationAfterDriving(InextensibilityMode::ResistStretch, -0.5), 1.0, 1e-6);
+  EXPECT_NEAR(separationAfterDriving(InextensibilityMode::ResistStretch, 0.5), 1.0 - drift, 1e-9);
+}
+
+TEST(World, InextensibilityMaxForceLetsGo) {
+  // A rope that can hold 5 N carrying a 1 kg box (9.81 N): it stretches and the box sinks,
+  // while no edge ever passes more than 5 N · h.
+  for (const double maxForce : {5.0, kUnbounded}) {
+    World world;
+    DeformableDesc rope;
+    rope.name = "rope";
+    rope.mesh = *makeRope({0, 2, 0}, {0, 1, 0}, 5, 0.05);
+    rope.inextensibility.enabled = true;
+    rope.inextensibility.maxForce = maxForce;
+    const DeformableId id = *world.addDeformable(rope);
+    ASSERT_TRUE(world.fixNode(id, 0).ok());
+    const RigidBodyId box = *world.addRigidBody(body("box", RigidShape::box({0.1, 0.1, 0.1}), {0, 0.9, 0}));
+    ASSERT_TRUE(world.addAnchor(AnchorDesc::node(id, 4, box)).ok());
+    for (int step = 0; step < 60; ++step) ASSERT_TRUE(world.step(kStep).ok());
+    if (std::isinf(maxForce))
+      EXPECT_NEAR(world.rigidPosition(box).y(), 0.9, 1e-3);
+    else
+      EXPECT_LT(world.rigidPosition(box).y(), 0.5);  // 1 s at (g − 5 N / 1.05 kg) pulls it well down
+  }
+}
+
+TEST(World, BendingImpulseIsBoundedByItsStrength) {
+  NodeArrays nodes;
+  nodes.position = {{0, 0, 0}, {1, 0, 0}, {0.5, 1, 0}, {0.5, -0.5, 0.8}};  // strongly folded
+  nodes.velocity.assign(4, Vec3::Zero());
+  nodes.velocity[2] = {0, 0, -5};  // and folding further, fast
+  nodes.force.assign(4, Vec3::Zero());
+  nodes.inverseMass.assign(4, 10.0);
+  BendingRow row;
+  row.node = {0, 1, 2, 3};
+  row.restDot = -0.5;
+  row.restEdgeLength = 1.0;
+  row.maxForce = 0.3;
+  prepareBending(row, nodes, kStep, 0.1 / kStep);
+  std::vector<RigidSolverState> rigid;
+  SolverContext ctx{nodes.velocity, nodes.inverseMass, rigid, kStep, 0.1 / kStep};
+  SweepStats stats;
+  for (int sweep = 0; sweep < 10; ++sweep) solveBending(row, ctx, stats);
+  EXPECT_NEAR(std::abs(row.lambda), 0.3 * kStep, 1e-15);  // saturated at F h
+  // With no bound the same row cancels the folding rate: Ċ + b = 0.
+  row.maxForce = kUnbounded;
+  prepareBending(row, nodes, kStep, 0.1 / kStep);
+  row.lambda = 0.0;
+  solveBending(row, ctx, stats);
+  double rate = row.bias;
+  for (int k = 0; k < 4; ++k) rate += row.jacobian[k].dot(nodes.velocity[row.node[k]]);
+  EXPECT_NEAR(rate, 0.0, 1e-12);
+}
+
+TEST(World, MassSpringHangsAtItsStaticExtensionAndOscillatesAtItsFrequency) {
+  // A 0.1 kg node below a pinned node on a 100 N/m spring: rest extension m g / k, period 2π√(m/k).
+  const double mass = 0.1, stiffness = 100.0;
+  World world;
+  DeformableDesc spring;
+  spring.name = "spring";
+  spring.mesh = *makeRope({0, 2, 0}, {0, 1.5, 0}, 2, 2 * mass);
+  spring.springs.stiffness = stiffness;
+  const DeformableId id = *world.addDeformable(spring);
+  ASSERT_TRUE(world.fixNode(id, 0).ok());
+  const double h = 1e-3;
+  double previousY = 1.5, previousVelocity = 0.0;
+  std::vector<double> downwardCrossings;  // times the node passes the equilibrium going down
+  const double equilibrium = 1.5 - mass * 9.81 / stiffness;
+  for (int step = 1; step <= 2000; ++step) {
+    ASSERT_TRUE(world.step(h).ok());
+    const double y = world.nodePositions(id)[1].y();
+    const double velocity = world.nodeVelocities(id)[1].y();
+    if (previousY > equilibrium && y <= equilibrium && velocity < 0)
+      downwardCrossings.push_back(step * h - h * (y - equilibrium) / (y - previousY));
+    previousY = y;
+    previousVelocity = velocity;
+  }
+  (void)previousVelocity;
+  ASSERT_GE(downwardCrossings.size(), 3u);
+  const double period = (downwardCrossings.back() - downwardCrossings.front()) / (downwardCrossings.size() - 1);
+  EXPECT_NEAR(period, 2 * kPi * std::sqrt(mass / stiffness), 0.01 * 2 * kPi * std::sqrt(mass / stiffness));
+
+  // With damping it settles at the static extension.
+  World damped;
+  spring.springs.damping = 2.0;
+  const DeformableId dampedId = *damped.addDeformable(spring);
+  ASSERT_TRUE(damped.fixNode(dampedId, 0).ok());
+  for (int step = 0; step < 300; ++step) ASSERT_TRUE(damped.step(kStep).ok());
+  EXPECT_NEAR(damped.nodePositions(dampedId)[1].y(), equilibrium, 1e-4);
+}
+
+}  // namespace
+}  // namespace tandem
