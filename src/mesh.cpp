@@ -1,5 +1,7 @@
 #include <tandem/mesh.h>
 
+#include "format.h"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -8,12 +10,6 @@
 
 namespace tandem {
 namespace {
-
-std::string str(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%g", value);
-  return buffer;
-}
 
 template <size_t N>
 Status checkIndices(const std::vector<std::array<int32_t, N>>& elements, int32_t nodeCount, const char* kind) {
@@ -40,7 +36,7 @@ Status checkCounts(int count, int minimum, const char* what, const char* generat
 
 Status checkTotalMass(double totalMass, const char* generator) {
   if (!std::isfinite(totalMass) || totalMass <= 0)
-    return Error{std::string(generator) + ": total mass must be a positive number of kilograms, got " + str(totalMass)};
+    return Error{std::string(generator) + ": total mass must be a positive number of kilograms, got " + formatNumber(totalMass)};
   return {};
 }
 
@@ -74,7 +70,7 @@ Status validateMesh(const DeformableMesh& mesh) {
     if (!mesh.positions[i].allFinite()) return Error{"node " + std::to_string(i) + " has a non-finite position"};
     const double m = mesh.masses[i];
     if (!std::isfinite(m) || m <= 0)
-      return Error{"node " + std::to_string(i) + " has mass " + str(m) + " kg; masses must be positive and finite"};
+      return Error{"node " + std::to_string(i) + " has mass " + formatNumber(m) + " kg; masses must be positive and finite"};
   }
   if (Status s = checkIndices(mesh.edges, n, "edge"); !s) return s;
   if (Status s = checkIndices(mesh.shearEdges, n, "shear edge"); !s) return s;

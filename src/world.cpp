@@ -1,6 +1,7 @@
 #include <tandem/world.h>
 
 #include "bullet/bullet_world.h"
+#include "format.h"
 #include "models/mass_spring.h"
 #include "solver/constraint_rows.h"
 #include "solver/direct_block.h"
@@ -8,17 +9,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <string>
 
 namespace tandem {
 namespace {
-
-std::string str(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%g", value);
-  return buffer;
-}
 
 bool isPositive(double value) { return value > 0 && !std::isnan(value); }  // +inf allowed
 
@@ -48,9 +42,9 @@ Status validateSettings(const WorldSettings& settings) {
   if (settings.solver.iterations < 1 || settings.solver.iterations > 1000)
     return Error{"settings: solver iterations must be in [1, 1000], got " + std::to_string(settings.solver.iterations)};
   if (!(settings.solver.baumgarte >= 0 && settings.solver.baumgarte <= 1))
-    return Error{"settings: baumgarte (β·h) must be in [0, 1], got " + str(settings.solver.baumgarte)};
+    return Error{"settings: baumgarte (β·h) must be in [0, 1], got " + formatNumber(settings.solver.baumgarte)};
   if (!(settings.divergenceSpeed > 0))
-    return Error{"settings: divergence speed must be positive, got " + str(settings.divergenceSpeed)};
+    return Error{"settings: divergence speed must be positive, got " + formatNumber(settings.divergenceSpeed)};
   return {};
 }
 
@@ -62,13 +56,13 @@ Status validateShape(const RigidShape& s, const std::string& who) {
         return Error{who + ": box half extents must be positive and finite"};
       break;
     case ShapeType::Sphere:
-      if (!positiveFinite(s.radius)) return Error{who + ": sphere radius must be positive, got " + str(s.radius)};
+      if (!positiveFinite(s.radius)) return Error{who + ": sphere radius must be positive, got " + formatNumber(s.radius)};
       break;
     case ShapeType::Cylinder:
     case ShapeType::Capsule:
       if (!positiveFinite(s.radius) || !positiveFinite(s.halfHeight))
-        return Error{who + ": radius and half height must be positive, got " + str(s.radius) + " and " +
-                     str(s.halfHeight)};
+        return Error{who + ": radius and half height must be positive, got " + formatNumber(s.radius) + " and " +
+                     formatNumber(s.halfHeight)};
       break;
     case ShapeType::Plane:
       if (!s.planeNormal.allFinite() || s.planeNormal.norm() < 1e-9 || !std::isfinite(s.planeOffset))
@@ -276,12 +270,12 @@ struct World::Impl final : bullet::SolverHooks {
         const int32_t n = body.firstNode + i;
         if (bad(nodes.position[n], nodes.velocity[n]))
           return Error{"step " + std::to_string(steps) + ": deformable '" + body.name + "' node " + std::to_string(i) +
-                       " has a non-finite or faster than " + str(limit) + " m/s state" + advice};
+                       " has a non-finite or faster than " + formatNumber(limit) + " m/s state" + advice};
       }
     for (int b = 0; b < bullet.rigidBodyCount(); ++b)
       if (bad(bullet.position(b), bullet.linearVelocity(b)) || !bullet.angularVelocity(b).allFinite())
         return Error{"step " + std::to_string(steps) + ": rigid body '" + rigidNames[b] +
-                     "' has a non-finite or faster than " + str(limit) + " m/s state" + advice};
+                     "' has a non-finite or faster than " + formatNumber(limit) + " m/s state" + advice};
     return {};
   }
 
@@ -318,7 +312,7 @@ Result<RigidBodyId> World::addRigidBody(const RigidBodyDesc& desc) {
   const std::string who = "rigid body '" + desc.name + "'";
   if (Status s = validateShape(desc.shape, who); !s) return Error{s.message()};
   if (desc.motion == MotionType::Dynamic && !(std::isfinite(desc.mass) && desc.mass > 0))
-    return Error{who + ": mass must be positive and finite for a dynamic body, got " + str(desc.mass) + " kg"};
+    return Error{who + ": mass must be positive and finite for a dynamic body, got " + formatNumber(desc.mass) + " kg"};
   if (desc.shape.type == ShapeType::Plane && desc.motion != MotionType::Static)
     return Error{who + ": a plane can only be static"};
   if (!desc.position.allFinite()) return Error{who + ": position is not finite"};
@@ -327,9 +321,9 @@ Result<RigidBodyId> World::addRigidBody(const RigidBodyDesc& desc) {
   if (!desc.linearVelocity.allFinite() || !desc.angularVelocity.allFinite())
     return Error{who + ": velocity is not finite"};
   if (!(desc.friction >= 0 && std::isfinite(desc.friction)))
-    return Error{who + ": friction must be >= 0, got " + str(desc.friction)};
+    return Error{who + ": friction must be >= 0, got " + formatNumber(desc.friction)};
   if (!(desc.restitution >= 0 && desc.restitution <= 1))
-    return Error{who + ": restitution must be in [0, 1], got " + str(desc.restitution)};
+    return Error{who + ": restitution must be in [0, 1], got " + formatNumber(desc.restitution)};
   const int index = m_impl->bullet.addRigidBody(desc);
   m_impl->rigidNames.push_back(desc.name);
   m_impl->rigid.emplace_back();
@@ -387,9 +381,9 @@ Result<DeformableId> World::addDeformable(const DeformableDesc& desc) {
       !(springs.damping >= 0 && std::isfinite(springs.damping)))
     return Error{who + ": spring stiffness and damping must be >= 0 and finite"};
   if (desc.inextensibility.enabled && !isPositive(desc.inextensibility.maxForce))
-    return Error{who + ": inextensibility max force must be positive, got " + str(desc.inextensibility.maxForce)};
+    return Error{who + ": inextensibility max force must be positive, got " + formatNumber(desc.inextensibility.maxForce)};
   if (desc.bending.enabled && !isPositive(desc.bending.maxForce))
-    return Error{who + ": bending max force must be positive, got " + str(desc.bending.maxForce)};
+    return Error{who + ": bending max force must be positive, got " + formatNumber(desc.bending.maxForce)};
 
   Impl& w = *m_impl;
   const DeformableMesh& mesh = desc.mesh;
@@ -475,7 +469,7 @@ Result<FixedPointId> World::addFixedPoint(DeformableId body, int32_t node, const
   Result<int32_t> n = m_impl->globalNode(body, node, "fixed point");
   if (!n) return Error{n.message()};
   if (!target.allFinite()) return Error{"fixed point: target is not finite"};
-  if (!isPositive(maxForce)) return Error{"fixed point: max force must be positive, got " + str(maxForce)};
+  if (!isPositive(maxForce)) return Error{"fixed point: max force must be positive, got " + formatNumber(maxForce)};
   FixedPointRow row;
   row.node = *n;
   row.target = row.previousTarget = target;
@@ -500,7 +494,7 @@ Result<AnchorId> World::addAnchor(const AnchorDesc& desc) {
   if (!w.validRigid(desc.body)) return Error{"anchor: no rigid body with index " + std::to_string(desc.body.index)};
   if (desc.nodeCount < 1 || desc.nodeCount > 4)
     return Error{"anchor: node count must be 1 to 4, got " + std::to_string(desc.nodeCount)};
-  if (!isPositive(desc.maxForce)) return Error{"anchor: max force must be positive, got " + str(desc.maxForce)};
+  if (!isPositive(desc.maxForce)) return Error{"anchor: max force must be positive, got " + formatNumber(desc.maxForce)};
   AnchorRow row;
   row.body = desc.body.index;
   row.maxForce = desc.maxForce;
@@ -513,7 +507,7 @@ Result<AnchorId> World::addAnchor(const AnchorDesc& desc) {
     row.weight[k] = desc.weights[k];
     weightSum += desc.weights[k];
   }
-  if (std::abs(weightSum - 1.0) > 1e-6) return Error{"anchor: weights must sum to 1, got " + str(weightSum)};
+  if (std::abs(weightSum - 1.0) > 1e-6) return Error{"anchor: weights must sum to 1, got " + formatNumber(weightSum)};
   for (int k = desc.nodeCount; k < 4; ++k) {
     row.node[k] = row.node[0];
     row.weight[k] = 0.0;
@@ -544,7 +538,7 @@ AnchorState World::anchorState(AnchorId id) const {
 
 Status World::step(double h) {
   if (!(std::isfinite(h) && h > 0 && h <= 1.0))
-    return Error{"step: time step must be in (0, 1] seconds, got " + str(h)};
+    return Error{"step: time step must be in (0, 1] seconds, got " + formatNumber(h)};
   Impl& w = *m_impl;
   w.timeStep = h;
   StepReport& report = w.report;

@@ -65,39 +65,44 @@ TEST(Coupling, RopeTurnsAHingedBar) {
   EXPECT_LT((world.rigidPosition(bar) - Vec3(0, 2, 0)).norm(), 5e-3);
 }
 
+// A top body of the given motion at y = 2.05, a 0.5 m rope hanging from it, a 1 kg load below.
+struct HangingLoad {
+  RigidBodyId top, load;
+  DeformableId rope;
+};
+HangingLoad hangLoad(World& world, MotionType topMotion) {
+  RigidBodyDesc hook = box("top", {0, 2.05, 0}, 1.0, {0.05, 0.05, 0.05});
+  hook.motion = topMotion;
+  HangingLoad rig;
+  rig.top = *world.addRigidBody(hook);
+  rig.rope = addRope(world, {0, 2, 0}, {0, 1.5, 0}, 6, 0.05);
+  rig.load = *world.addRigidBody(box("load", {0, 1.4, 0}));
+  EXPECT_TRUE(world.addAnchor(AnchorDesc::node(rig.rope, 0, rig.top)).ok());
+  EXPECT_TRUE(world.addAnchor(AnchorDesc::node(rig.rope, 5, rig.load)).ok());
+  return rig;
+}
+
 TEST(Coupling, AnchorToStaticBodyHolds) {
   World world;
-  RigidBodyDesc ceiling = box("ceiling", {0, 2.05, 0}, 0, {0.5, 0.05, 0.5});
-  ceiling.motion = MotionType::Static;
-  const RigidBodyId top = *world.addRigidBody(ceiling);
-  const DeformableId rope = addRope(world, {0, 2, 0}, {0, 1, 0}, 11, 0.1);
-  const RigidBodyId load = *world.addRigidBody(box("load", {0, 0.9, 0}));
-  ASSERT_TRUE(world.addAnchor(AnchorDesc::node(rope, 0, top)).ok());
-  ASSERT_TRUE(world.addAnchor(AnchorDesc::node(rope, 10, load)).ok());
+  const HangingLoad rig = hangLoad(world, MotionType::Static);
   for (int step = 0; step < 180; ++step) ASSERT_TRUE(world.step(kStep).ok());
-  EXPECT_NEAR(world.rigidPosition(load).y(), 0.9, 0.01);
-  EXPECT_LT(world.rigidLinearVelocity(load).norm(), 0.01);
-  EXPECT_LT((world.rigidPosition(top) - Vec3(0, 2.05, 0)).norm(), 1e-12);
+  EXPECT_NEAR(world.rigidPosition(rig.load).y(), 1.4, 0.01);
+  EXPECT_LT(world.rigidLinearVelocity(rig.load).norm(), 0.01);
+  EXPECT_LT((world.rigidPosition(rig.top) - Vec3(0, 2.05, 0)).norm(), 1e-12);
 }
 
 TEST(Coupling, KinematicBodyCarriesTheRopeAndLoad) {
   World world;
-  RigidBodyDesc hook = box("hook", {0, 2.05, 0}, 0, {0.05, 0.05, 0.05});
-  hook.motion = MotionType::Kinematic;
-  const RigidBodyId top = *world.addRigidBody(hook);
-  const DeformableId rope = addRope(world, {0, 2, 0}, {0, 1.5, 0}, 6, 0.05);
-  const RigidBodyId load = *world.addRigidBody(box("load", {0, 1.4, 0}));
-  ASSERT_TRUE(world.addAnchor(AnchorDesc::node(rope, 0, top)).ok());
-  ASSERT_TRUE(world.addAnchor(AnchorDesc::node(rope, 5, load)).ok());
+  const HangingLoad rig = hangLoad(world, MotionType::Kinematic);
   for (int step = 0; step < 60; ++step) ASSERT_TRUE(world.step(kStep).ok());
-  // Lift the hook at 0.5 m/s for one second: the load follows, 0.5 m higher.
+  // Lift the top at 0.5 m/s for one second: the load follows, 0.5 m higher.
   for (int step = 1; step <= 60; ++step) {
-    ASSERT_TRUE(world.setKinematicTarget(top, {0, 2.05 + 0.5 * step * kStep, 0}, Quat::Identity()).ok());
+    ASSERT_TRUE(world.setKinematicTarget(rig.top, {0, 2.05 + 0.5 * step * kStep, 0}, Quat::Identity()).ok());
     ASSERT_TRUE(world.step(kStep).ok());
   }
-  EXPECT_NEAR(world.rigidPosition(top).y(), 2.55, 1e-9);
-  EXPECT_NEAR(world.rigidPosition(load).y(), 1.9, 0.01);
-  EXPECT_NEAR(world.rigidLinearVelocity(load).y(), 0.5, 0.05);
+  EXPECT_NEAR(world.rigidPosition(rig.top).y(), 2.55, 1e-9);
+  EXPECT_NEAR(world.rigidPosition(rig.load).y(), 1.9, 0.01);
+  EXPECT_NEAR(world.rigidLinearVelocity(rig.load).y(), 0.5, 0.05);
 }
 
 TEST(Coupling, SleepingBodyHoldsAndWakesWhenTheRopeMoves) {

@@ -2,13 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 
 namespace tandem {
 namespace {
 
-// E = ε · diag(J M⁻¹ Jᵀ): small enough not to soften the rows measurably, large enough that
-// redundant rows with slightly inconsistent errors get bounded impulses.
+// E = ε · diag(J M⁻¹ Jᵀ). Just enough for redundant rows (nodes anchored to one rigid body and
+// joined by edges too) to stay solvable; any larger and it softens long chains, whose
+// smallest eigenvalue falls like 1/n² (a 1,000-node rope stretches by 390 % at ε = 1e-4).
 constexpr double kRelativeCompliance = 1e-9;
 // h² K_g per edge is at most this multiple of its lighter node's mass.
 constexpr double kMaxStiffnessToMass = 100;

@@ -16,7 +16,7 @@
 //
 //   [ H   Jᵀ ] [ Δv ]   [     0      ]       H = M + h² K_g
 //   [ J  −E  ] [ −Δλ] = [ −(J v + b) ]       E = ε diag(J M⁻¹ Jᵀ), a tiny compliance that
-//                                              keeps redundant rows (a triangulated cloth) solvable
+//                                              keeps redundant rows solvable
 //
 // so that J (v + Δv) = −b for every row at once, with Δv = H⁻¹ Jᵀ Δλ. The compliance leaves
 // a residual E·(−Δλ); one refinement solve per sweep removes it to O(ε²).
@@ -28,6 +28,8 @@
 // forces under sideways motion, h² K_g = h |λ| / L (I − n nᵀ) per taut edge (λ from the last
 // step), coupling the edge's two nodes as [G −G; −G G]. Its columns sum to zero, so internal
 // rows still conserve momentum exactly; edges in compression get none (theirs is negative).
+// Velocities are set from M Δv = Jᵀ Δλ − h² K_g Δv after the solve, so momentum is exact to
+// rounding whatever the solve's own residual.
 //
 // The KKT matrix is symmetric quasi-definite, so a sparse LDLᵀ without pivoting (AMD ordering)
 // factorises it once per step; each sweep is one pair of triangular solves. Rows with bounds
