@@ -1,6 +1,7 @@
 #include <tandem/world.h>
 
 #include "bullet/bullet_world.h"
+#include "collision/contact_detection.h"
 #include "format.h"
 #include "models/mass_spring.h"
 #include "solver/constraint_rows.h"
@@ -10,6 +11,8 @@
 #include <chrono>
 #include <cmath>
 #include <string>
+#include <unordered_map>
+#include <unordered_set>
 
 namespace tandem {
 namespace {
@@ -22,6 +25,9 @@ struct DeformableRecord {
   int32_t nodeCount = 0;
   DeformableMesh restMesh;
   RowSolverKind rowSolver = RowSolverKind::Auto;
+  CollisionSettings collision;
+  std::vector<int32_t> surfaceNodes;                       // global indices
+  std::vector<std::array<int32_t, 3>> surfaceTriangles;    // global indices
 };
 
 class StageClock {
@@ -43,6 +49,8 @@ Status validateSettings(const WorldSettings& settings) {
     return Error{"settings: solver iterations must be in [1, 1000], got " + std::to_string(settings.solver.iterations)};
   if (!(settings.solver.baumgarte >= 0 && settings.solver.baumgarte <= 1))
     return Error{"settings: baumgarte (β·h) must be in [0, 1], got " + formatNumber(settings.solver.baumgarte)};
+  if (!(settings.solver.contactSlop >= 0 && std::isfinite(settings.solver.contactSlop)))
+    return Error{"settings: contact slop must be >= 0 m, got " + formatNumber(settings.solver.contactSlop)};
   if (!(settings.divergenceSpeed > 0))
     return Error{"settings: divergence speed must be positive, got " + formatNumber(settings.divergenceSpeed)};
   return {};
@@ -120,6 +128,7 @@ struct World::Impl final : bullet::SolverHooks {
   WorldSettings settings;
   bullet::BulletWorld bullet;
   std::vector<std::string> rigidNames;
+  std::vector<RigidBodyDesc> rigidDescs;  // shape and friction, for Tandem's collision detection
   std::vector<RigidSolverState> rigid;
 
   NodeArrays nodes;
@@ -128,6 +137,11 @@ struct World::Impl final : bullet::SolverHooks {
   ConstraintRows rows;
   std::vector<DirectBlock> directBlocks;
   bool directBlocksStale = true;  // rows were added since the blocks were built
+  struct ContactImpulse {
+    double normal;
+    Vec3 friction;
+  };
+  std::unordered_map<uint64_t, ContactImpulse> previousContacts;  // by feature, for warm starting
 
   StepReport report;
   double time = 0.0;
@@ -151,12 +165,50 @@ struct World::Impl final : bullet::SolverHooks {
     }
   }
 
+  // ---- Stage 3: deformable contacts ---------------------------------------------------------
+  void detectDeformableContacts(double h) {
+    std::vector<CollisionSurface> surfaces;
+    for (const DeformableRecord& body : deformables) {
+      if (!body.collision.enabled) continue;
+      surfaces.push_back({body.firstNode, body.nodeCount, body.surfaceNodes, body.surfaceTriangles,
+                          body.restMesh.positions, body.collision.thickness, body.collision.friction,
+                          body.collision.selfCollision});
+    }
+    std::vector<CollisionRigid> shapes(bullet.rigidBodyCount());
+    for (int b = 0; b < bullet.rigidBodyCount(); ++b)
+      shapes[b] = {rigidDescs[b].shape,         bullet.position(b),        bullet.orientation(b),
+                   bullet.linearVelocity(b),    bullet.angularVelocity(b), rigidDescs[b].friction,
+                   bullet.mass(b)};
+    std::unordered_set<uint64_t> anchored;
+    for (const AnchorRow& row : rows.anchors)
+      for (int k = 0; k < 4; ++k)
+        if (row.weight[k] != 0.0) anchored.insert(nodeBodyKey(row.node[k], row.body));
+    rows.contacts.clear();
+    detectContacts(surfaces, nodes, shapes, anchored, h, rows.contacts);
+    // Warm start from last step's impulse on the same feature, friction kept in the new plane.
+    for (ContactRow& row : rows.contacts) {
+      auto previous = previousContacts.find(row.key);
+      if (previous == previousContacts.end()) continue;
+      row.lambdaNormal = previous->second.normal;
+      row.warmFriction = previous->second.friction;
+    }
+  }
+
+  void rememberContacts() {
+    previousContacts.clear();
+    for (const ContactRow& row : rows.contacts)
+      previousContacts[row.key] = {row.lambdaNormal, row.impulse() - row.lambdaNormal * row.normal};
+  }
+
   // ---- Stage 4: rows ---------------------------------------------------------------------
   void prepareRows(double h) {
     if (directBlocksStale) buildDirectBlocks();
     bullet.loadRigidProperties(rigid);
-    rows.prepare(nodes, rigid, h, settings.solver.baumgarte / h);
-    for (DirectBlock& block : directBlocks) block.prepare(rows, nodes, rigid, h);
+    rows.prepare(nodes, rigid, settings.gravity, h, settings.solver.baumgarte / h, settings.solver.contactSlop);
+    for (DirectBlock& block : directBlocks) {
+      block.addContacts(rows, settings.solver.contactSlop);
+      block.prepare(rows, nodes, rigid, h);
+    }
     report.rowCounts = rows.countRows();
   }
 
@@ -247,7 +299,7 @@ struct World::Impl final : bullet::SolverHooks {
     bullet.loadRigidVelocities(rigid);
     SolverContext ctx = context();
     SweepStats stats;
-    rows.sweep(ctx, stats);
+    rows.sweep(ctx, settings.solver.friction, stats);
     for (DirectBlock& block : directBlocks) block.solve(rows, ctx, stats);
     report.rmsDeltaLambda.push_back(stats.rows ? std::sqrt(stats.sumSquares / static_cast<double>(stats.rows)) : 0.0);
     bullet.storeRigidVelocities(rigid);
@@ -326,6 +378,7 @@ Result<RigidBodyId> World::addRigidBody(const RigidBodyDesc& desc) {
     return Error{who + ": restitution must be in [0, 1], got " + formatNumber(desc.restitution)};
   const int index = m_impl->bullet.addRigidBody(desc);
   m_impl->rigidNames.push_back(desc.name);
+  m_impl->rigidDescs.push_back(desc);
   m_impl->rigid.emplace_back();
   return RigidBodyId{index};
 }
@@ -370,6 +423,12 @@ Vec3 World::deformableImpulseOnRigid(RigidBodyId body) const { return m_impl->ri
 Vec3 World::deformableAngularImpulseOnRigid(RigidBodyId body) const {
   return m_impl->rigid[body.index].angularImpulse;
 }
+Vec3 World::deformableForceOnRigid(RigidBodyId body) const {
+  return m_impl->timeStep > 0 ? Vec3(m_impl->rigid[body.index].impulse / m_impl->timeStep) : Vec3::Zero();
+}
+Vec3 World::deformableTorqueOnRigid(RigidBodyId body) const {
+  return m_impl->timeStep > 0 ? Vec3(m_impl->rigid[body.index].angularImpulse / m_impl->timeStep) : Vec3::Zero();
+}
 
 // ---- Deformable bodies ------------------------------------------------------------------
 
@@ -384,6 +443,10 @@ Result<DeformableId> World::addDeformable(const DeformableDesc& desc) {
     return Error{who + ": inextensibility max force must be positive, got " + formatNumber(desc.inextensibility.maxForce)};
   if (desc.bending.enabled && !isPositive(desc.bending.maxForce))
     return Error{who + ": bending max force must be positive, got " + formatNumber(desc.bending.maxForce)};
+  if (!(std::isfinite(desc.collision.thickness) && desc.collision.thickness >= 0))
+    return Error{who + ": collision thickness must be >= 0 m and finite, got " + formatNumber(desc.collision.thickness)};
+  if (!(std::isfinite(desc.collision.friction) && desc.collision.friction >= 0))
+    return Error{who + ": friction must be >= 0 and finite, got " + formatNumber(desc.collision.friction)};
 
   Impl& w = *m_impl;
   const DeformableMesh& mesh = desc.mesh;
@@ -420,7 +483,16 @@ Result<DeformableId> World::addDeformable(const DeformableDesc& desc) {
       w.rows.bending.push_back(row);
     }
   }
-  w.deformables.push_back({desc.name, first, mesh.nodeCount(), mesh, desc.rowSolver});
+  DeformableRecord record{desc.name, first, mesh.nodeCount(), mesh, desc.rowSolver, desc.collision, {}, {}};
+  // The collision surface: its triangles, and the nodes on them (every node when it has none).
+  std::vector<bool> onSurface(mesh.nodeCount(), mesh.triangles.empty());
+  for (const auto& t : mesh.triangles) {
+    record.surfaceTriangles.push_back({first + t[0], first + t[1], first + t[2]});
+    for (int32_t n : t) onSurface[n] = true;
+  }
+  for (int32_t n = 0; n < mesh.nodeCount(); ++n)
+    if (onSurface[n]) record.surfaceNodes.push_back(first + n);
+  w.deformables.push_back(std::move(record));
   w.directBlocksStale = true;
   return DeformableId{static_cast<int32_t>(w.deformables.size()) - 1};
 }
@@ -534,6 +606,31 @@ AnchorState World::anchorState(AnchorId id) const {
   return state;
 }
 
+std::vector<ContactReport> World::contacts() const {
+  const Impl& w = *m_impl;
+  std::vector<ContactReport> reports;
+  reports.reserve(w.rows.contacts.size());
+  for (const ContactRow& row : w.rows.contacts) {
+    ContactReport report;
+    const DeformableRecord& body = w.deformableOfNode(row.node[0]);
+    report.deformable = DeformableId{static_cast<int32_t>(&body - w.deformables.data())};
+    if (row.body >= 0) {
+      report.rigid = RigidBodyId{row.body};
+    } else {
+      const DeformableRecord& other = w.deformableOfNode(row.node[1]);
+      report.other = DeformableId{static_cast<int32_t>(&other - w.deformables.data())};
+    }
+    for (int k = 0; k < 4; ++k)
+      if (row.coefficient[k] > 0) report.point += row.coefficient[k] * w.nodes.position[row.node[k]];
+    report.normal = row.normal;
+    report.gap = row.gap;
+    report.normalImpulse = row.lambdaNormal;
+    report.frictionImpulse = row.impulse() - row.lambdaNormal * row.normal;
+    reports.push_back(report);
+  }
+  return reports;
+}
+
 // ---- The step ---------------------------------------------------------------------------
 
 Status World::step(double h) {
@@ -551,12 +648,14 @@ Status World::step(double h) {
   w.manageSleepOfAnchoredBodies();      // 2. Bullet: gravity and external forces on rigid bodies
   w.bullet.predictRigidMotion(h);
   timed(Stage::RigidPrediction);
-  w.bullet.detectCollisions(h);         // 3. Bullet: rigid-rigid contacts
+  w.bullet.detectCollisions(h);         // 3. Bullet: rigid-rigid contacts; Tandem: deformable ones
+  w.detectDeformableContacts(h);
   timed(Stage::CollisionDetection);
   w.prepareRows(h);                     // 4. Tandem's rows: Jacobians, effective masses, biases
   timed(Stage::Rows);
   w.bullet.solve(h, w.settings.solver.iterations, w);  // 5+6. K × [Bullet iteration, Tandem sweep]
   timed(Stage::Solve);
+  w.rememberContacts();
   w.integrateNodes(h);                  // 7. symplectic Euler for nodes; Bullet for rigid bodies
   w.bullet.integrate(h);
   timed(Stage::Integrate);

@@ -107,14 +107,14 @@ TEST(Coupling, KinematicBodyCarriesTheRopeAndLoad) {
 
 TEST(Coupling, SleepingBodyHoldsAndWakesWhenTheRopeMoves) {
   World world;
-  const RigidBodyId anchorBody = *world.addRigidBody(box("anchor", {0, 2.05, 0}, 5.0, {0.2, 0.05, 0.2}));
+  const RigidBodyId anchorBody = *world.addRigidBody(box("anchor", {0, 2.05, 0}, 5.0, {0.8, 0.05, 0.2}));
   RigidBodyDesc shelf = box("shelf", {0, 1.9, 0}, 0, {0.5, 0.1, 0.5});
   shelf.motion = MotionType::Static;
   ASSERT_TRUE(world.addRigidBody(shelf).ok());
   const DeformableId rope = *world.addDeformable([&] {
     DeformableDesc desc;
     desc.name = "rope";
-    desc.mesh = *makeRope({0.25, 2.0, 0}, {0.25, 1.5, 0}, 6, 0.05);
+    desc.mesh = *makeRope({0.7, 2.0, 0}, {0.7, 1.5, 0}, 6, 0.05);  // clear of the shelf
     desc.inextensibility.enabled = true;
     return desc;
   }());

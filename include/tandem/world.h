@@ -14,6 +14,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <vector>
 #include <string_view>
 
 namespace tandem {
@@ -40,10 +41,17 @@ inline constexpr double kUnbounded = std::numeric_limits<double>::infinity();
 
 // ---- Solver ---------------------------------------------------------------------------------
 
+// How a contact's friction impulse is bounded. Coulomb: |λₜ| ≤ μ λₙ, by the contact's own
+// normal impulse, right whatever presses the surfaces together. Pressure: the paper's
+// |λₜ| ≤ μ m |g·n| h, from the weight of the contact's mass alone.
+enum class FrictionModel { Coulomb, Pressure };
+
 struct SolverSettings {
   int iterations = 4;        // K: each is one Bullet iteration, then one sweep over Tandem's rows
   double baumgarte = 0.1;    // β·h: the fraction of a position error corrected per step (β = 0.1/h)
   bool warmStart = true;     // start each row from last step's impulse
+  FrictionModel friction = FrictionModel::Coulomb;
+  double contactSlop = 0.001;  // m of penetration left alone, so resting contacts do not jitter
 };
 
 struct WorldSettings {
@@ -136,13 +144,34 @@ struct MassSpringSettings {
 enum class RowSolverKind { Auto, Direct, Iterative };
 inline constexpr int kAutoDirectRowLimit = 1500;
 
+struct CollisionSettings {
+  bool enabled = true;         // against rigid bodies and other deformables
+  bool selfCollision = false;  // against itself, away from its own neighbourhood
+  double thickness = 0.005;    // m: the surface is kept this far from anything it touches
+  double friction = 0.5;       // μ; a contact's μ is the product of both sides'
+};
+
 struct DeformableDesc {
   std::string name;
   DeformableMesh mesh;
   MassSpringSettings springs;
   InextensibilitySettings inextensibility;
   BendingSettings bending;
+  CollisionSettings collision;
   RowSolverKind rowSolver = RowSolverKind::Auto;
+};
+
+// A contact of a deformable surface in the last step. Impulses are on the deformable (side A);
+// the other side got the opposite.
+struct ContactReport {
+  DeformableId deformable;
+  std::optional<RigidBodyId> rigid;          // side B: a rigid body, or
+  std::optional<DeformableId> other;         // a deformable (possibly the same one)
+  Vec3 point = Vec3::Zero();                 // on side A, m
+  Vec3 normal = Vec3::UnitY();               // from B to A
+  double gap = 0.0;                          // m at the start of the step, thickness taken off
+  double normalImpulse = 0.0;                // N·s, ≥ 0
+  Vec3 frictionImpulse = Vec3::Zero();       // N·s, tangential
 };
 
 // A point fixed in a rigid body that a point of a deformable is held to: a node, or a point
@@ -198,6 +227,9 @@ class World {
   // rows put on a rigid body in the last step.
   Vec3 deformableImpulseOnRigid(RigidBodyId body) const;
   Vec3 deformableAngularImpulseOnRigid(RigidBodyId body) const;
+  // The same as a mean force (N) and torque about the centre of mass (N·m) over the last step.
+  Vec3 deformableForceOnRigid(RigidBodyId body) const;
+  Vec3 deformableTorqueOnRigid(RigidBodyId body) const;
 
   // Deformable bodies
   Result<DeformableId> addDeformable(const DeformableDesc& desc);
@@ -219,6 +251,9 @@ class World {
   Vec3 fixedPointImpulse(FixedPointId id) const;                    // N·s on the node, last step
   Result<AnchorId> addAnchor(const AnchorDesc& desc);
   AnchorState anchorState(AnchorId id) const;
+
+  // Contacts of deformable surfaces in the last step.
+  std::vector<ContactReport> contacts() const;
 
   // Stepping. A step that produces a non-finite state returns an error naming the body and
   // node (or rigid body) and leaves the world in that state for inspection.

@@ -6,6 +6,7 @@
 
 #include "constraints/anchor.h"
 #include "constraints/bending.h"
+#include "constraints/contact.h"
 #include "constraints/fixed_point.h"
 #include "constraints/inextensibility.h"
 #include "solver/solver_state.h"
@@ -19,18 +20,25 @@ struct ConstraintRows {
   std::vector<AnchorRow> anchors;
   std::vector<InextensibilityRow> inextensibility;
   std::vector<BendingRow> bending;
+  std::vector<ContactRow> contacts;  // found anew every step
 
-  // Scalar rows per type (a fixed point or an anchor is three).
+  // Scalar rows per type (a fixed point or an anchor is three; friction two per contact).
   std::array<int, static_cast<size_t>(RowType::Count)> countRows() const {
+    int friction = 0;
+    for (const ContactRow& row : contacts) friction += row.friction > 0 ? 2 : 0;
     return {3 * static_cast<int>(fixedPoints.size()), 3 * static_cast<int>(anchors.size()),
-            static_cast<int>(inextensibility.size()), static_cast<int>(bending.size())};
+            static_cast<int>(inextensibility.size()), static_cast<int>(bending.size()),
+            static_cast<int>(contacts.size()), friction};
   }
 
-  void prepare(const NodeArrays& nodes, std::span<const RigidSolverState> rigid, double timeStep, double biasRate) {
+  void prepare(const NodeArrays& nodes, std::span<const RigidSolverState> rigid, const Vec3& gravity,
+               double timeStep, double biasRate, double contactSlop) {
     for (FixedPointRow& row : fixedPoints) prepareFixedPoint(row, nodes, timeStep, biasRate);
     for (AnchorRow& row : anchors) prepareAnchor(row, nodes, rigid[row.body], timeStep, biasRate);
     for (InextensibilityRow& row : inextensibility) prepareInextensibility(row, nodes, timeStep, biasRate);
     for (BendingRow& row : bending) prepareBending(row, nodes, timeStep, biasRate);
+    for (ContactRow& row : contacts)
+      prepareContact(row, nodes.velocity, nodes.inverseMass, rigid, gravity, timeStep, biasRate, contactSlop);
   }
 
   // Rows in a direct block are not warm started: the block is exact in one sweep, and its
@@ -43,6 +51,7 @@ struct ConstraintRows {
     for (const InextensibilityRow& row : inextensibility)
       if (!row.inDirectBlock) warmStartInextensibility(row, ctx);
     for (const BendingRow& row : bending) warmStartBending(row, ctx);
+    for (const ContactRow& row : contacts) warmStartContact(row, ctx);  // a block's contacts come in at 0
   }
 
   void clearImpulses() {
@@ -50,10 +59,14 @@ struct ConstraintRows {
     for (AnchorRow& row : anchors) row.lambda.setZero();
     for (InextensibilityRow& row : inextensibility) row.lambda = 0.0;
     for (BendingRow& row : bending) row.lambda = 0.0;
+    for (ContactRow& row : contacts) {
+      row.lambdaNormal = 0.0;
+      row.lambdaTangent.setZero();
+    }
   }
 
   // One projected Gauss-Seidel sweep over every row not in a direct block.
-  void sweep(SolverContext& ctx, SweepStats& stats) {
+  void sweep(SolverContext& ctx, FrictionModel friction, SweepStats& stats) {
     for (FixedPointRow& row : fixedPoints)
       if (!row.inDirectBlock) solveFixedPoint(row, ctx, stats);
     for (InextensibilityRow& row : inextensibility)
@@ -61,6 +74,9 @@ struct ConstraintRows {
     for (BendingRow& row : bending) solveBending(row, ctx, stats);
     for (AnchorRow& row : anchors)
       if (!row.inDirectBlock) solveAnchor(row, ctx, stats);
+    for (ContactRow& row : contacts)
+      if (!row.inDirectBlock) solveContactNormal(row, ctx, stats);
+    for (ContactRow& row : contacts) solveContactFriction(row, friction, ctx, stats);
   }
 };
 

@@ -10,6 +10,8 @@ namespace {
 // joined by edges too) to stay solvable; any larger and it softens long chains, whose
 // smallest eigenvalue falls like 1/n² (a 1,000-node rope stretches by 390 % at ε = 1e-4).
 constexpr double kRelativeCompliance = 1e-9;
+// Rounds of releasing pulling contacts per solve (each refactorises the block).
+constexpr int kMaxReleaseRounds = 3;
 // h² K_g per edge is at most this multiple of its lighter node's mass.
 constexpr double kMaxStiffnessToMass = 100;
 
@@ -58,6 +60,25 @@ void DirectBlock::collectRows(const ConstraintRows& rows) {
     const bool bilateral = std::isinf(row.lambdaMin) && std::isinf(row.lambdaMax) && row.lambdaMin < 0;
     if (!ownsNode(row.node[0]) || !bilateral) continue;
     m_rows.push_back({RowType::Inextensibility, static_cast<int32_t>(i), 0});
+  }
+  m_persistentRows = m_rows.size();
+  m_persistentBodies = m_bodies.size();
+}
+
+void DirectBlock::addContacts(ConstraintRows& rows, double slop) {
+  m_rows.resize(m_persistentRows);
+  m_bodies.resize(m_persistentBodies);
+  for (size_t i = 0; i < rows.contacts.size(); ++i) {
+    ContactRow& row = rows.contacts[i];
+    if (row.gap > slop || row.normalMass == 0.0) continue;
+    bool owned = true;
+    for (int k = 0; k < 4; ++k) owned &= row.coefficient[k] == 0.0 || localNode(row.node[k]) >= 0;
+    if (!owned) continue;
+    row.inDirectBlock = true;
+    row.lambdaNormal = 0.0;
+    if (row.body >= 0 && std::find(m_bodies.begin(), m_bodies.end(), row.body) == m_bodies.end())
+      m_bodies.push_back(row.body);
+    m_rows.push_back({RowType::Contact, static_cast<int32_t>(i), 0});
   }
 }
 
@@ -145,8 +166,11 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
   m_bias.resize(rowCount);
   m_compliance.resize(rowCount);
   m_active.assign(rowCount, false);
+  m_rowEntries.assign(rowCount, {0, 0});
+  m_released.assign(rowCount, false);
   for (int32_t r = 0; r < rowCount; ++r) {
     const int32_t kktRow = m_dofCount + r;
+    m_rowEntries[r].first = entries.size();
     double inverseMassSum = 0.0;
     auto add = [&](int32_t dof, const Vec3& j, double inverseMass) {
       if (dof < 0) return;
@@ -179,6 +203,22 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
         m_bias[r] = row.bias[ref.component];
         break;
       }
+      case RowType::Contact: {
+        const ContactRow& row = rows.contacts[ref.index];
+        for (int k = 0; k < 4; ++k)
+          if (row.coefficient[k] != 0.0)
+            add(nodeDof(row.node[k]), row.coefficient[k] * row.normal, nodes.inverseMass[row.node[k]]);
+        if (row.body >= 0) {
+          const RigidSolverState& body = rigid[row.body];
+          const int32_t dof = bodyDof(row.body);
+          add(dof, -row.normal, body.inverseMass);
+          const Vec3 angular = row.normal.cross(row.offset);
+          if (dof >= 0) add(dof + 3, angular, 0.0);
+          inverseMassSum += angular.dot(body.inverseInertia * angular);
+        }
+        m_bias[r] = row.bias;
+        break;
+      }
       case RowType::Inextensibility: {
         const InextensibilityRow& row = rows.inextensibility[ref.index];
         if (row.effectiveMass != 0.0) {
@@ -194,6 +234,7 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
     m_active[r] = inverseMassSum > 0.0;
     m_compliance[r] = m_active[r] ? kRelativeCompliance * inverseMassSum : 1.0;
     entries.emplace_back(kktRow, kktRow, -m_compliance[r]);
+    m_rowEntries[r].second = entries.size();  // the diagonal is the last
   }
 
   m_jacobianT.resize(m_dofCount, rowCount);
@@ -208,10 +249,15 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
     m_bodyInverseInertia[b] = rigid[m_bodies[b]].inverseInertia;
   }
 
-  const int32_t size = m_dofCount + rowCount;
+  m_entries = std::move(entries);
+  factorise();
+}
+
+void DirectBlock::factorise() {
+  const Eigen::Index size = m_dofCount + scalarRowCount();
   SparseMatrix kkt(size, size);
-  kkt.setFromTriplets(entries.begin(), entries.end());
-  // The pattern depends only on which nodes are pinned and which bodies can move.
+  kkt.setFromTriplets(m_entries.begin(), m_entries.end());
+  // The pattern depends only on which nodes are pinned, which bodies can move, and the rows.
   std::vector<int32_t> layout = m_nodeDof;
   layout.insert(layout.end(), m_bodyDof.begin(), m_bodyDof.end());
   if (layout != m_analysedLayout || kkt.nonZeros() != m_analysedNonZeros) {
@@ -223,12 +269,22 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
   m_factorOk = m_factor->info() == Eigen::Success;
 }
 
+// A released row keeps its place in the pattern, with zero entries and a unit diagonal.
+void DirectBlock::release(int32_t row) {
+  m_released[row] = true;
+  for (size_t e = m_rowEntries[row].first; e + 1 < m_rowEntries[row].second; ++e)
+    m_entries[e] = Eigen::Triplet<double>(m_entries[e].row(), m_entries[e].col(), 0.0);
+  const size_t diagonal = m_rowEntries[row].second - 1;
+  m_entries[diagonal] = Eigen::Triplet<double>(m_entries[diagonal].row(), m_entries[diagonal].col(), -1.0);
+}
+
 void DirectBlock::clearImpulses(ConstraintRows& rows) const {
   for (const BlockRowRef& ref : m_rows) {
     switch (ref.type) {
       case RowType::FixedPoint: rows.fixedPoints[ref.index].lambda[ref.component] = 0.0; break;
       case RowType::Anchor: rows.anchors[ref.index].lambda[ref.component] = 0.0; break;
       case RowType::Inextensibility: rows.inextensibility[ref.index].lambda = 0.0; break;
+      case RowType::Contact: rows.contacts[ref.index].lambdaNormal = 0.0; break;
       default: break;
     }
   }
@@ -245,6 +301,10 @@ double DirectBlock::rowVelocity(const ConstraintRows& rows, const BlockRowRef& r
       const InextensibilityRow& row = rows.inextensibility[ref.index];
       return row.jacobian[0].dot(ctx.velocity[row.node[0]]) + row.jacobian[1].dot(ctx.velocity[row.node[1]]);
     }
+    case RowType::Contact: {
+      const ContactRow& row = rows.contacts[ref.index];
+      return row.normal.dot(contactRelativeVelocity(row, ctx));
+    }
     default: return 0.0;
   }
 }
@@ -252,16 +312,37 @@ double DirectBlock::rowVelocity(const ConstraintRows& rows, const BlockRowRef& r
 void DirectBlock::solve(ConstraintRows& rows, SolverContext& ctx, SweepStats& stats) {
   if (m_rows.empty() || !m_factorOk) return;
   const int32_t rowCount = scalarRowCount();
-  m_rhs.setZero(m_dofCount + rowCount);
+  // Active set over the contacts: solve; a contact that would end up pulling is released (its
+  // impulse so far taken back as a known load on the block) and the block solved again.
+  Eigen::VectorXd releasedImpulse = Eigen::VectorXd::Zero(rowCount);  // −λ so far, per released row
+  for (int round = 0;; ++round) {
+    for (int32_t r = 0; r < rowCount; ++r)
+      if (m_released[r]) releasedImpulse[r] = -rows.contacts[m_rows[r].index].lambdaNormal;
+    m_rhs.resize(m_dofCount + rowCount);
+    m_rhs.head(m_dofCount) = m_jacobianT * releasedImpulse;
+    for (int32_t r = 0; r < rowCount; ++r)
+      m_rhs[m_dofCount + r] = m_active[r] && !m_released[r] ? -(rowVelocity(rows, m_rows[r], ctx) + m_bias[r]) : 0.0;
+    m_solution = m_factor->solve(m_rhs);
+    // One step of iterative refinement: the first solve leaves J(v + Δv) + b = E y, a residual
+    // of the compliance alone; solving for it again removes all but O(ε²) of it.
+    m_rhs.head(m_dofCount).setZero();
+    for (int32_t r = 0; r < rowCount; ++r)
+      m_rhs[m_dofCount + r] = m_active[r] && !m_released[r] ? -m_compliance[r] * m_solution[m_dofCount + r] : 0.0;
+    m_solution += m_factor->solve(m_rhs);
+
+    bool released = false;
+    for (size_t r = m_persistentRows; r < m_rows.size(); ++r) {
+      const double total = rows.contacts[m_rows[r].index].lambdaNormal - m_solution[m_dofCount + r];
+      if (!m_released[r] && total < 0.0) {
+        release(static_cast<int32_t>(r));
+        released = true;
+      }
+    }
+    if (!released || round == kMaxReleaseRounds) break;
+    factorise();
+  }
   for (int32_t r = 0; r < rowCount; ++r)
-    if (m_active[r]) m_rhs[m_dofCount + r] = -(rowVelocity(rows, m_rows[r], ctx) + m_bias[r]);
-  m_solution = m_factor->solve(m_rhs);
-  // One step of iterative refinement: the first solve leaves J(v + Δv) + b = E y, a residual
-  // of the compliance alone; solving for it again removes all but O(ε²) of it.
-  m_rhs.head(m_dofCount).setZero();
-  for (int32_t r = 0; r < rowCount; ++r)
-    m_rhs[m_dofCount + r] = m_active[r] ? -m_compliance[r] * m_solution[m_dofCount + r] : 0.0;
-  m_solution += m_factor->solve(m_rhs);
+    if (m_released[r]) m_solution[m_dofCount + r] = -releasedImpulse[r];  // Δλ = −λ so far
 
   // Velocities from the impulses, M Δv = Jᵀ Δλ − h² K_g Δv, with Δv in the stiffness term taken
   // from the solve: the stiffness forces cancel in pairs, so momentum changes by exactly Jᵀ Δλ
@@ -301,6 +382,17 @@ void DirectBlock::solve(ConstraintRows& rows, SolverContext& ctx, SweepStats& st
         break;
       }
       case RowType::Inextensibility: rows.inextensibility[ref.index].lambda += delta; break;
+      case RowType::Contact: {
+        ContactRow& row = rows.contacts[ref.index];
+        row.lambdaNormal += delta;
+        if (row.body >= 0) {
+          RigidSolverState& body = ctx.rigid[row.body];
+          const Vec3 impulse = -delta * row.normal;
+          body.impulse += impulse;
+          body.angularImpulse += row.offset.cross(impulse);
+        }
+        break;
+      }
       default: break;
     }
     stats.add(delta);

@@ -69,6 +69,12 @@ class DirectBlock {
   void collectRows(const ConstraintRows& rows);
   // Takes the collected rows out of the PGS sweep: from now on this block solves them.
   void claimRows(ConstraintRows& rows) const;
+
+  // This step's contacts that touch (gap ≤ slop) and whose nodes are all the block's join it
+  // as equality rows, so a heavy body resting on a light cloth is held by the whole cloth in
+  // one solve; a contact that would pull is let go (and the block solved again without it). Call after the rows are
+  // prepared, before prepare().
+  void addContacts(ConstraintRows& rows, double slop);
   int scalarRowCount() const { return static_cast<int>(m_rows.size()); }
 
   // Assembles and factorises the KKT matrix for this step. Rows must be prepared first;
@@ -87,8 +93,10 @@ class DirectBlock {
 
   std::vector<NodeRange> m_ranges;
   int32_t m_nodeCount = 0;  // over all ranges
-  std::vector<BlockRowRef> m_rows;
-  std::vector<int32_t> m_bodies;  // rigid bodies the block's anchors hold
+  std::vector<BlockRowRef> m_rows;  // the persistent rows first, then this step's contacts
+  std::vector<int32_t> m_bodies;     // rigid bodies of the block's anchors, then of its contacts
+  size_t m_persistentRows = 0;
+  size_t m_persistentBodies = 0;
 
   std::vector<int32_t> m_nodeDof;  // per node of the block: its first degree of freedom, or −1 if pinned
   std::vector<int32_t> m_bodyDof;  // per entry of m_bodies: first degree of freedom, or −1 if immovable
@@ -110,9 +118,14 @@ class DirectBlock {
     Mat3 g;              // h² K_g of the edge
   };
   std::vector<EdgeStiffness> m_stiffness;  // taut edges this step
+  std::vector<Eigen::Triplet<double>> m_entries;  // the KKT matrix, kept to release contacts
+  std::vector<std::pair<size_t, size_t>> m_rowEntries;  // each row's entries; its diagonal last
+  std::vector<bool> m_released;  // contacts let go this step
 
   int32_t localNode(int32_t node) const;  // index among the block's nodes, or −1
   int32_t globalNode(int32_t local) const;
+  void factorise();
+  void release(int32_t row);
   double rowVelocity(const ConstraintRows& rows, const BlockRowRef& ref, const SolverContext& ctx) const;
 };
 

@@ -1,0 +1,315 @@
+#include "collision/contact_detection.h"
+
+#include "collision/geometry.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_set>
+
+namespace tandem {
+namespace {
+
+using geometry::closestOnTriangle;
+
+// Feature keys for warm starting: what touches what, packed in 64 bits.
+enum class Feature : uint64_t { NodeRigid = 1, FaceRigid = 2, NodeFace = 3 };
+uint64_t featureKey(Feature kind, uint64_t a, uint64_t b, uint64_t c = 0) {
+  return (static_cast<uint64_t>(kind) << 60) ^ (a * 0x9E3779B97F4A7C15ull) ^ (b * 0xC2B2AE3D27D4EB4Full) ^
+         (c * 0x165667B19E3779F9ull);
+}
+
+double boundingRadius(const RigidShape& shape) {
+  switch (shape.type) {
+    case ShapeType::Box: return shape.halfExtents.norm();
+    case ShapeType::Sphere: return shape.radius;
+    case ShapeType::Capsule: return shape.radius + shape.halfHeight;
+    case ShapeType::Cylinder: return std::hypot(shape.radius, shape.halfHeight);
+    case ShapeType::Plane: return INFINITY;
+  }
+  return INFINITY;
+}
+
+// Points of a shape's surface that can poke into a face between its nodes: box corners and
+// cylinder rims (sampled), in the shape's frame.
+std::vector<Vec3> pokingPoints(const RigidShape& shape) {
+  std::vector<Vec3> points;
+  if (shape.type == ShapeType::Box) {
+    for (int corner = 0; corner < 8; ++corner)
+      points.push_back(shape.halfExtents.cwiseProduct(
+          Vec3(corner & 1 ? 1 : -1, corner & 2 ? 1 : -1, corner & 4 ? 1 : -1)));
+  } else if (shape.type == ShapeType::Cylinder) {
+    constexpr int kRimSamples = 16;
+    for (int k = 0; k < kRimSamples; ++k) {
+      const double angle = 2 * 3.14159265358979323846 * k / kRimSamples;
+      for (double y : {-shape.halfHeight, shape.halfHeight})
+        points.emplace_back(shape.radius * std::cos(angle), y, shape.radius * std::sin(angle));
+    }
+  }
+  return points;
+}
+
+struct Detector {
+  std::span<const CollisionSurface> surfaces;
+  const NodeArrays& nodes;
+  std::span<const CollisionRigid> rigid;
+  const std::unordered_set<uint64_t>& anchored;
+  double timeStep;
+  std::vector<ContactRow>& contacts;
+  std::unordered_set<uint64_t> edgeContacts;  // an edge point is found from both its triangles
+
+  // How far two sides can close in this step, at the speeds they start it with.
+  double closing(const Vec3& a, const Vec3& b) const { return (a - b).norm() * timeStep; }
+
+  void addRigidContact(const CollisionSurface& surface, const std::array<int32_t, 3>& node,
+                       const std::array<double, 3>& weight, int count, int32_t body, const Vec3& rigidPoint,
+                       const Vec3& normal, double gap, uint64_t key) {
+    ContactRow row;
+    for (int k = 0; k < 4; ++k) {
+      row.node[k] = k < count ? node[k] : node[0];
+      row.coefficient[k] = k < count ? weight[k] : 0.0;
+    }
+    row.body = body;
+    row.offset = rigidPoint - rigid[body].position;
+    row.normal = normal;
+    row.gap = gap;
+    row.friction = surface.friction * rigid[body].friction;
+    row.key = key;
+    contacts.push_back(row);
+  }
+
+  void nodesAgainstRigid(const CollisionSurface& surface, int32_t body) {
+    const CollisionRigid& shape = rigid[body];
+    const double reach = boundingRadius(shape.shape) + surface.thickness;
+    const Mat3 rotation = shape.orientation.toRotationMatrix();
+    for (int32_t n : surface.nodes) {
+      if (anchored.count(nodeBodyKey(n, body))) continue;
+      const Vec3& x = nodes.position[n];
+      const Vec3 rigidVelocity = shape.linearVelocity + shape.angularVelocity.cross(x - shape.position);
+      const double margin = closing(nodes.velocity[n], rigidVelocity);
+      if ((x - shape.position).norm() > reach + margin) continue;
+      const geometry::ShapeDistance d = geometry::distanceToShape(shape.shape, rotation.transpose() * (x - shape.position));
+      const double gap = d.distance - surface.thickness;
+      if (gap > margin) continue;
+      addRigidContact(surface, {n, n, n}, {1, 0, 0}, 1, body, shape.position + rotation * d.surfacePoint,
+                      rotation * d.normal, gap, featureKey(Feature::NodeRigid, n, body));
+    }
+  }
+
+  // A point of the rigid surface (or of its core, for spheres and capsules, with `radius`)
+  // against one triangle. Vertices are left to the node contacts; an edge point is taken once.
+  void pointAgainstFace(const CollisionSurface& surface, const std::array<int32_t, 3>& face, int32_t body,
+                        const Vec3& point, double radius, int32_t feature) {
+    const Vec3 &a = nodes.position[face[0]], &b = nodes.position[face[1]], &c = nodes.position[face[2]];
+    const std::array<double, 3> w = closestOnTriangle(point, a, b, c);
+    if (std::max({w[0], w[1], w[2]}) > 1.0 - 1e-9) return;  // at a vertex
+    const Vec3 onFace = w[0] * a + w[1] * b + w[2] * c;
+    const CollisionRigid& shape = rigid[body];
+    Vec3 normal;
+    double gap;
+    if (radius > 0) {  // sphere or capsule core: along the line to the core
+      const Vec3 d = onFace - point;
+      const double distance = d.norm();
+      if (distance < 1e-12) return;
+      normal = d / distance;
+      gap = distance - radius - surface.thickness;
+    } else {  // a corner: along the face normal, on the side away from the body
+      normal = (b - a).cross(c - a).normalized();
+      if (normal.dot(onFace - shape.position) < 0) normal = -normal;
+      gap = normal.dot(onFace - point) - surface.thickness;
+      if ((onFace - point - normal.dot(onFace - point) * normal).norm() > 1e-9 * (b - a).norm()) return;  // off the face
+      if (gap < -4 * surface.thickness - boundingRadius(shape.shape)) return;  // far behind: not this face
+    }
+    Vec3 faceVelocity = w[0] * nodes.velocity[face[0]] + w[1] * nodes.velocity[face[1]] + w[2] * nodes.velocity[face[2]];
+    const Vec3 rigidPoint = point + radius * normal;
+    const Vec3 rigidVelocity = shape.linearVelocity + shape.angularVelocity.cross(rigidPoint - shape.position);
+    if (gap > closing(faceVelocity, rigidVelocity)) return;
+    uint64_t key;
+    const int zero = w[0] == 0 ? 0 : w[1] == 0 ? 1 : w[2] == 0 ? 2 : -1;
+    if (zero >= 0) {  // on an edge, shared with the neighbouring triangle
+      const int32_t i = face[(zero + 1) % 3], j = face[(zero + 2) % 3];
+      key = featureKey(Feature::FaceRigid, std::min(i, j), std::max(i, j), (static_cast<uint64_t>(body) << 20) ^ feature);
+      if (!edgeContacts.insert(key).second) return;
+    } else {
+      key = featureKey(Feature::FaceRigid, face[0], face[1] ^ (static_cast<uint64_t>(face[2]) << 32),
+                       (static_cast<uint64_t>(body) << 20) ^ feature);
+    }
+    addRigidContact(surface, face, w, 3, body, rigidPoint, normal, gap, key);
+  }
+
+  void facesAgainstRigid(const CollisionSurface& surface, int32_t body) {
+    const CollisionRigid& shape = rigid[body];
+    if (shape.shape.type == ShapeType::Plane || surface.triangles.empty()) return;
+    const Mat3 rotation = shape.orientation.toRotationMatrix();
+    const double reach = boundingRadius(shape.shape) + surface.thickness;
+    std::vector<Vec3> points;
+    for (const Vec3& local : pokingPoints(shape.shape)) points.push_back(shape.position + rotation * local);
+    const Vec3 axis = rotation * Vec3(0, shape.shape.halfHeight, 0);
+    for (const auto& face : surface.triangles) {
+      if (anchored.count(nodeBodyKey(face[0], body)) || anchored.count(nodeBodyKey(face[1], body)) ||
+          anchored.count(nodeBodyKey(face[2], body)))
+        continue;
+      const Vec3 &a = nodes.position[face[0]], &b = nodes.position[face[1]], &c = nodes.position[face[2]];
+      const Vec3 centre = (a + b + c) / 3.0;
+      const double size = std::max({(a - centre).norm(), (b - centre).norm(), (c - centre).norm()});
+      const double margin = closing(nodes.velocity[face[0]], shape.linearVelocity) + size;
+      if ((centre - shape.position).norm() > reach + margin) continue;
+      if (shape.shape.type == ShapeType::Sphere) {
+        pointAgainstFace(surface, face, body, shape.position, shape.shape.radius, 0);
+      } else if (shape.shape.type == ShapeType::Capsule) {
+        const geometry::SegmentTriangle closest =
+            geometry::closestSegmentTriangle(shape.position - axis, shape.position + axis, a, b, c);
+        pointAgainstFace(surface, face, body, shape.position - axis + 2 * closest.s * axis, shape.shape.radius, 0);
+      }
+      for (size_t p = 0; p < points.size(); ++p)
+        pointAgainstFace(surface, face, body, points[p], 0.0, static_cast<int32_t>(p) + 1);
+    }
+  }
+
+  // Node against face, between surfaces and within one, over a spatial hash of the faces.
+  void nodesAgainstFaces() {
+    struct Face {
+      int32_t surface;
+      std::array<int32_t, 3> node;
+    };
+    // Which surfaces' nodes can meet which surfaces' faces: their own when self-colliding,
+    // others' when their padded bounding boxes overlap.
+    const size_t count = surfaces.size();
+    std::vector<Eigen::AlignedBox3d> bounds(count);
+    double largestPad = 0.0;
+    for (size_t s = 0; s < count; ++s) {
+      double fastest = 0.0;
+      for (int32_t n : surfaces[s].nodes) {
+        bounds[s].extend(nodes.position[n]);
+        fastest = std::max(fastest, nodes.velocity[n].norm());
+      }
+      const double pad = 2 * surfaces[s].thickness + 2 * fastest * timeStep;
+      largestPad = std::max(largestPad, pad);
+      bounds[s].min().array() -= pad;
+      bounds[s].max().array() += pad;
+    }
+    std::vector<char> meets(count * count, 0);  // meets[nodesOf * count + facesOf]
+    std::vector<char> facesNeeded(count, 0), nodesNeeded(count, 0);
+    for (size_t a = 0; a < count; ++a)
+      for (size_t b = 0; b < count; ++b) {
+        if (surfaces[b].triangles.empty()) continue;
+        const bool pair = a == b ? surfaces[a].selfCollision : bounds[a].intersects(bounds[b]);
+        if (!pair) continue;
+        meets[a * count + b] = 1;
+        nodesNeeded[a] = facesNeeded[b] = 1;
+      }
+    std::vector<Face> faces;
+    double cell = 0.0;
+    for (size_t s = 0; s < count; ++s) {
+      if (!facesNeeded[s]) continue;
+      for (const auto& face : surfaces[s].triangles) {
+        faces.push_back({static_cast<int32_t>(s), face});
+        cell = std::max(cell, (nodes.position[face[1]] - nodes.position[face[0]]).norm());
+      }
+    }
+    if (faces.empty()) return;
+    cell = std::max(cell, largestPad);
+    auto cellOf = [cell](const Vec3& p) {
+      return Eigen::Vector3i(static_cast<int>(std::floor(p.x() / cell)), static_cast<int>(std::floor(p.y() / cell)),
+                             static_cast<int>(std::floor(p.z() / cell)));
+    };
+    auto hash = [](const Eigen::Vector3i& c) {
+      return static_cast<uint64_t>(c.x()) * 73856093ull ^ static_cast<uint64_t>(c.y()) * 19349663ull ^
+             static_cast<uint64_t>(c.z()) * 83492791ull;
+    };
+    std::vector<std::pair<uint64_t, int32_t>> grid;
+    for (size_t f = 0; f < faces.size(); ++f) {
+      const auto& node = faces[f].node;
+      Vec3 low = nodes.position[node[0]], high = low;
+      for (int k = 1; k < 3; ++k) {
+        low = low.cwiseMin(nodes.position[node[k]]);
+        high = high.cwiseMax(nodes.position[node[k]]);
+      }
+      const Eigen::Vector3i from = cellOf(low - Vec3::Constant(largestPad)), to = cellOf(high + Vec3::Constant(largestPad));
+      for (int x = from.x(); x <= to.x(); ++x)
+        for (int y = from.y(); y <= to.y(); ++y)
+          for (int z = from.z(); z <= to.z(); ++z) grid.emplace_back(hash({x, y, z}), static_cast<int32_t>(f));
+    }
+    std::sort(grid.begin(), grid.end());
+
+    for (size_t s = 0; s < count; ++s) {
+      if (!nodesNeeded[s]) continue;
+      const CollisionSurface& surface = surfaces[s];
+      for (int32_t n : surface.nodes) {
+        const Vec3& x = nodes.position[n];
+        const uint64_t key = hash(cellOf(x));
+        auto it = std::lower_bound(grid.begin(), grid.end(), std::make_pair(key, INT32_MIN));
+        for (; it != grid.end() && it->first == key; ++it) {
+          const Face& face = faces[it->second];
+          const CollisionSurface& other = surfaces[face.surface];
+          if (!meets[s * count + face.surface]) continue;
+          if (face.node[0] == n || face.node[1] == n || face.node[2] == n) continue;
+          const double thickness = surface.thickness + other.thickness;
+          const Vec3 &a = nodes.position[face.node[0]], &b = nodes.position[face.node[1]], &c = nodes.position[face.node[2]];
+          const std::array<double, 3> w = closestOnTriangle(x, a, b, c);
+          const Vec3 onFace = w[0] * a + w[1] * b + w[2] * c;
+          const double distance = (x - onFace).norm();
+          const Vec3 faceVelocity = w[0] * nodes.velocity[face.node[0]] + w[1] * nodes.velocity[face.node[1]] +
+                                    w[2] * nodes.velocity[face.node[2]];
+          if (distance - thickness > closing(nodes.velocity[n], faceVelocity)) continue;
+          if (face.surface == static_cast<int32_t>(s) && nearAtRest(surface, n, face.node, thickness)) continue;
+          Vec3 normal = distance > 1e-9 ? Vec3((x - onFace) / distance) : (b - a).cross(c - a).normalized();
+          ContactRow row;
+          row.node = {n, face.node[0], face.node[1], face.node[2]};
+          row.coefficient = {1.0, -w[0], -w[1], -w[2]};
+          row.normal = normal;
+          row.gap = distance - thickness;
+          row.friction = surface.friction * other.friction;
+          row.key = featureKey(Feature::NodeFace, n, face.node[0] ^ (static_cast<uint64_t>(face.node[1]) << 21),
+                               face.node[2]);
+          contacts.push_back(row);
+        }
+      }
+    }
+  }
+
+  // A node and a face of the same surface that were within reach at rest are neighbours, not
+  // a collision.
+  static bool nearAtRest(const CollisionSurface& surface, int32_t node, const std::array<int32_t, 3>& face,
+                         double thickness) {
+    auto rest = [&](int32_t n) { return surface.restPositions[n - surface.firstNode]; };
+    const std::array<double, 3> w = closestOnTriangle(rest(node), rest(face[0]), rest(face[1]), rest(face[2]));
+    const Vec3 onFace = w[0] * rest(face[0]) + w[1] * rest(face[1]) + w[2] * rest(face[2]);
+    return (rest(node) - onFace).norm() < 2.0 * thickness;
+  }
+};
+
+}  // namespace
+
+uint64_t nodeBodyKey(int32_t node, int32_t body) {
+  return (static_cast<uint64_t>(static_cast<uint32_t>(node)) << 32) | static_cast<uint32_t>(body);
+}
+
+void detectContacts(std::span<const CollisionSurface> surfaces, const NodeArrays& nodes,
+                    std::span<const CollisionRigid> rigid, const std::unordered_set<uint64_t>& anchored,
+                    double timeStep, std::vector<ContactRow>& contacts) {
+  Detector detector{surfaces, nodes, rigid, anchored, timeStep, contacts, {}};
+  for (const CollisionSurface& surface : surfaces)
+    for (int32_t body = 0; body < static_cast<int32_t>(rigid.size()); ++body) {
+      detector.nodesAgainstRigid(surface, body);
+      detector.facesAgainstRigid(surface, body);
+    }
+  detector.nodesAgainstFaces();
+
+  // The mass a contact moves, for the pressure friction model (paper eq. 32): the nodes' share,
+  // plus the rigid body's mass spread over its contacts.
+  std::vector<int> contactsPerBody(rigid.size(), 0);
+  for (const ContactRow& row : contacts)
+    if (row.body >= 0) ++contactsPerBody[row.body];
+  for (ContactRow& row : contacts) {
+    double mass = 0.0;
+    for (int k = 0; k < 4; ++k)
+      if (row.coefficient[k] != 0.0 && nodes.inverseMass[row.node[k]] > 0)
+        mass += std::abs(row.coefficient[k]) / nodes.inverseMass[row.node[k]];
+    if (row.body >= 0) mass += rigid[row.body].mass / contactsPerBody[row.body];
+    row.contactMass = mass;
+  }
+}
+
+}  // namespace tandem

@@ -1,0 +1,57 @@
+// Tandem's collision detection: deformable surfaces against rigid shapes, against each other,
+// and against themselves. Produces ContactRow's (src/constraints/contact.h).
+//
+// Contacts found (each a point, a normal from B to A, a gap, and nodes with weights):
+//   node – rigid shape     every surface node against the exact signed distance of each shape
+//   rigid feature – face   box corners, cylinder rim points, the sphere centre and the capsule
+//                          core segment against each triangle, so a corner cannot poke through
+//                          a coarse face between its nodes
+//   node – face            between deformables, and within one (self-collision) except for
+//                          triangles the node belongs to or was already near at rest
+// Contacts are speculative: any pair closer than the thickness plus the distance the two
+// sides can close in this step is a row, whose bias lets the gap close but not pass.
+// Broad phase: bounding spheres for rigid shapes; a sorted spatial hash of padded triangle
+// boxes for deformable surfaces, so cost grows linearly with surface size.
+#pragma once
+
+#include <tandem/world.h>
+
+#include "constraints/contact.h"
+#include "solver/solver_state.h"
+
+#include <span>
+#include <unordered_set>
+#include <vector>
+
+namespace tandem {
+
+struct CollisionSurface {
+  int32_t firstNode = 0;
+  int32_t nodeCount = 0;
+  std::span<const int32_t> nodes;                      // surface nodes, global indices
+  std::span<const std::array<int32_t, 3>> triangles;   // global indices
+  std::span<const Vec3> restPositions;                 // by local index, for self-collision
+  double thickness = 0.0;
+  double friction = 0.0;
+  bool selfCollision = false;
+};
+
+struct CollisionRigid {
+  RigidShape shape;
+  Vec3 position = Vec3::Zero();  // centre of mass
+  Quat orientation = Quat::Identity();
+  Vec3 linearVelocity = Vec3::Zero();
+  Vec3 angularVelocity = Vec3::Zero();
+  double friction = 0.0;
+  double mass = 0.0;  // 0 when immovable
+};
+
+// A node anchored to a rigid body does not collide with it (nor do faces around the node).
+uint64_t nodeBodyKey(int32_t node, int32_t body);
+
+// Appends every contact to `contacts`. `anchored` holds nodeBodyKey's of pairs to leave out.
+void detectContacts(std::span<const CollisionSurface> surfaces, const NodeArrays& nodes,
+                    std::span<const CollisionRigid> rigid, const std::unordered_set<uint64_t>& anchored,
+                    double timeStep, std::vector<ContactRow>& contacts);
+
+}  // namespace tandem

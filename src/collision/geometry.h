@@ -1,0 +1,173 @@
+// Closest-point queries for collision detection: point–triangle, segment–segment,
+// segment–triangle, and signed distances from a point to Tandem's rigid shapes.
+#pragma once
+
+#include <tandem/world.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace tandem::geometry {
+
+// Barycentric weights (wa, wb, wc) of the point of triangle abc closest to p
+// (Ericson, Real-Time Collision Detection, §5.1.5).
+inline std::array<double, 3> closestOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return {1, 0, 0};
+  const Vec3 bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return {0, 1, 0};
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+    const double v = d1 / (d1 - d3);
+    return {1 - v, v, 0};
+  }
+  const Vec3 cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return {0, 0, 1};
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+    const double w = d2 / (d2 - d6);
+    return {1 - w, 0, w};
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    return {0, 1 - w, w};
+  }
+  const double denominator = 1.0 / (va + vb + vc);
+  const double v = vb * denominator, w = vc * denominator;
+  return {1 - v - w, v, w};
+}
+
+// Parameters (s, t) in [0, 1] of the closest points p0 + s (p1 − p0) and q0 + t (q1 − q0).
+inline std::array<double, 2> closestOnSegments(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1) {
+  const Vec3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
+  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+  double s = 0, t = 0;
+  if (a <= 1e-24 && e <= 1e-24) return {0, 0};
+  if (a <= 1e-24) return {0, std::clamp(f / e, 0.0, 1.0)};
+  const double c = d1.dot(r);
+  if (e <= 1e-24) return {std::clamp(-c / a, 0.0, 1.0), 0};
+  const double b = d1.dot(d2), denominator = a * e - b * b;
+  s = denominator > 1e-24 ? std::clamp((b * f - c * e) / denominator, 0.0, 1.0) : 0.0;
+  t = (b * s + f) / e;
+  if (t < 0) {
+    t = 0;
+    s = std::clamp(-c / a, 0.0, 1.0);
+  } else if (t > 1) {
+    t = 1;
+    s = std::clamp((b - c) / a, 0.0, 1.0);
+  }
+  return {s, t};
+}
+
+// The closest pair between segment p0p1 and triangle abc: the parameter on the segment and
+// the triangle's barycentric weights. Candidates: the segment's ends against the face, the
+// segment crossing the face, and the segment against each edge.
+struct SegmentTriangle {
+  double s;
+  std::array<double, 3> weights;
+  double distance;
+};
+inline SegmentTriangle closestSegmentTriangle(const Vec3& p0, const Vec3& p1, const Vec3& a, const Vec3& b,
+                                              const Vec3& c) {
+  const std::array<Vec3, 3> corner{a, b, c};
+  auto point = [&](const std::array<double, 3>& w) { return w[0] * a + w[1] * b + w[2] * c; };
+  SegmentTriangle best{0, {1, 0, 0}, 1e300};
+  auto consider = [&](double s, const std::array<double, 3>& w) {
+    const double distance = (p0 + s * (p1 - p0) - point(w)).norm();
+    if (distance < best.distance) best = {s, w, distance};
+  };
+  consider(0, closestOnTriangle(p0, a, b, c));
+  consider(1, closestOnTriangle(p1, a, b, c));
+  const Vec3 normal = (b - a).cross(c - a);
+  const double h0 = normal.dot(p0 - a), h1 = normal.dot(p1 - a);
+  if (h0 * h1 < 0) {  // the segment crosses the triangle's plane
+    const double s = h0 / (h0 - h1);
+    consider(s, closestOnTriangle(p0 + s * (p1 - p0), a, b, c));
+  }
+  for (int e = 0; e < 3; ++e) {
+    const auto [s, t] = closestOnSegments(p0, p1, corner[e], corner[(e + 1) % 3]);
+    std::array<double, 3> w{0, 0, 0};
+    w[e] = 1 - t;
+    w[(e + 1) % 3] = t;
+    consider(s, w);
+  }
+  return best;
+}
+
+// Distance from a point to a rigid shape's surface (negative inside), the outward unit normal
+// there and the surface point, all in the shape's frame.
+struct ShapeDistance {
+  double distance;
+  Vec3 normal;
+  Vec3 surfacePoint;
+};
+
+inline ShapeDistance distanceToShape(const RigidShape& shape, const Vec3& q) {
+  switch (shape.type) {
+    case ShapeType::Sphere: {
+      const double length = q.norm();
+      const Vec3 n = length > 1e-12 ? Vec3(q / length) : Vec3::UnitY();
+      return {length - shape.radius, n, shape.radius * n};
+    }
+    case ShapeType::Box: {
+      const Vec3& e = shape.halfExtents;
+      const Vec3 clamped = q.cwiseMax(-e).cwiseMin(e);
+      const Vec3 outside = q - clamped;
+      if (outside.squaredNorm() > 0) {
+        const double length = outside.norm();
+        return {length, outside / length, clamped};
+      }
+      int axis = 0;
+      double depth = e[0] - std::abs(q[0]);
+      for (int k = 1; k < 3; ++k)
+        if (e[k] - std::abs(q[k]) < depth) {
+          depth = e[k] - std::abs(q[k]);
+          axis = k;
+        }
+      Vec3 n = Vec3::Zero();
+      n[axis] = q[axis] >= 0 ? 1 : -1;
+      Vec3 surface = q;
+      surface[axis] = n[axis] * e[axis];
+      return {-depth, n, surface};
+    }
+    case ShapeType::Capsule: {
+      const Vec3 axisPoint(0, std::clamp(q.y(), -shape.halfHeight, shape.halfHeight), 0);
+      const Vec3 d = q - axisPoint;
+      const double length = d.norm();
+      const Vec3 n = length > 1e-12 ? Vec3(d / length) : Vec3::UnitX();
+      return {length - shape.radius, n, axisPoint + shape.radius * n};
+    }
+    case ShapeType::Cylinder: {
+      const double radial = std::hypot(q.x(), q.z());
+      const Vec3 radialDirection = radial > 1e-12 ? Vec3(q.x() / radial, 0, q.z() / radial) : Vec3::UnitX();
+      const double dr = radial - shape.radius, dy = std::abs(q.y()) - shape.halfHeight;
+      const double sign = q.y() >= 0 ? 1 : -1;
+      const Vec3 rim = shape.radius * radialDirection + Vec3(0, sign * shape.halfHeight, 0);
+      if (dr > 0 && dy > 0) {  // beyond the rim
+        const Vec3 d = q - rim;
+        return {d.norm(), d.normalized(), rim};
+      }
+      if (dr > dy) {  // nearest the side
+        Vec3 surface = shape.radius * radialDirection;
+        surface.y() = q.y();
+        return {dr, radialDirection, surface};
+      }
+      Vec3 surface = q;
+      surface.y() = sign * shape.halfHeight;
+      return {dy, Vec3(0, sign, 0), surface};
+    }
+    case ShapeType::Plane: {
+      const Vec3 n = shape.planeNormal.normalized();
+      const double distance = n.dot(q) - shape.planeOffset;
+      return {distance, n, q - distance * n};
+    }
+  }
+  return {1e300, Vec3::UnitY(), q};
+}
+
+}  // namespace tandem::geometry
