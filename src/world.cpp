@@ -26,6 +26,7 @@ struct DeformableRecord {
   DeformableMesh restMesh;
   RowSolverKind rowSolver = RowSolverKind::Auto;
   CollisionSettings collision;
+  double damping = 0.0;
   std::vector<int32_t> surfaceNodes;                       // global indices
   std::vector<std::array<int32_t, 3>> surfaceTriangles;    // global indices
 };
@@ -163,6 +164,24 @@ struct World::Impl final : bullet::SolverHooks {
       if (nodes.inverseMass[i] == 0.0) continue;
       nodes.velocity[i] += h * (settings.gravity + nodes.inverseMass[i] * nodes.force[i]);
     }
+    for (const DeformableRecord& body : deformables) dampInternalMotion(body, h);
+  }
+
+  // v ← v − min(c h, 1) (v − v̄), v̄ the body's mass-weighted mean velocity over its free nodes.
+  void dampInternalMotion(const DeformableRecord& body, double h) {
+    if (body.damping == 0.0) return;
+    Vec3 momentum = Vec3::Zero();
+    double mass = 0.0;
+    for (int32_t n = body.firstNode; n < body.firstNode + body.nodeCount; ++n)
+      if (nodes.inverseMass[n] > 0) {
+        momentum += nodes.velocity[n] / nodes.inverseMass[n];
+        mass += 1.0 / nodes.inverseMass[n];
+      }
+    if (mass == 0.0) return;
+    const Vec3 mean = momentum / mass;
+    const double fraction = std::min(body.damping * h, 1.0);
+    for (int32_t n = body.firstNode; n < body.firstNode + body.nodeCount; ++n)
+      if (nodes.inverseMass[n] > 0) nodes.velocity[n] -= fraction * (nodes.velocity[n] - mean);
   }
 
   // ---- Stage 3: deformable contacts ---------------------------------------------------------
@@ -294,13 +313,14 @@ struct World::Impl final : bullet::SolverHooks {
   }
 
   // Bounded rows by projected Gauss-Seidel first, then each direct block exactly, so that a
-  // sweep ends with the bilateral rows satisfied.
+  // sweep ends with the bilateral rows satisfied, then the contacts no block holds.
   void afterIteration(int) override {
     bullet.loadRigidVelocities(rigid);
     SolverContext ctx = context();
     SweepStats stats;
     rows.sweep(ctx, settings.solver.friction, stats);
     for (DirectBlock& block : directBlocks) block.solve(rows, ctx, stats);
+    if (!directBlocks.empty()) rows.sweepFreeContacts(ctx, stats);
     report.rmsDeltaLambda.push_back(stats.rows ? std::sqrt(stats.sumSquares / static_cast<double>(stats.rows)) : 0.0);
     bullet.storeRigidVelocities(rigid);
   }
@@ -308,10 +328,27 @@ struct World::Impl final : bullet::SolverHooks {
   // ---- Stage 7: integrate ----------------------------------------------------------------
   void integrateNodes(double h) {
     for (size_t i = 0; i < nodes.size(); ++i) nodes.position[i] += h * nodes.velocity[i];
+    pushOutOfContacts();
     for (FixedPointRow& row : rows.fixedPoints) row.previousTarget = row.target;
   }
 
   // A non-finite or absurdly fast state means the step diverged: say which body, and stop.
+  // Split-impulse style: a contact found penetrating beyond the slop moves its deformable side
+  // out by a fraction of the excess, without touching velocities, so resting contacts do not
+  // bounce. Each node moves in proportion to its share of the contact's inverse mass.
+  void pushOutOfContacts() {
+    constexpr double kFraction = 0.2;
+    for (const ContactRow& row : rows.contacts) {
+      const double excess = -(row.gap + settings.solver.contactSlop);
+      if (excess <= 0) continue;
+      double inverseMass = 0.0;
+      for (int k = 0; k < 4; ++k) inverseMass += row.coefficient[k] * row.coefficient[k] * nodes.inverseMass[row.node[k]];
+      if (inverseMass == 0.0) continue;
+      const Vec3 push = (kFraction * excess / inverseMass) * row.normal;
+      for (int k = 0; k < 4; ++k) nodes.position[row.node[k]] += row.coefficient[k] * nodes.inverseMass[row.node[k]] * push;
+    }
+  }
+
   Status checkDiverged() const {
     const double limit = settings.divergenceSpeed;
     auto bad = [limit](const Vec3& x, const Vec3& v) { return !x.allFinite() || !v.allFinite() || v.norm() > limit; };
@@ -443,6 +480,10 @@ Result<DeformableId> World::addDeformable(const DeformableDesc& desc) {
     return Error{who + ": inextensibility max force must be positive, got " + formatNumber(desc.inextensibility.maxForce)};
   if (desc.bending.enabled && !isPositive(desc.bending.maxForce))
     return Error{who + ": bending max force must be positive, got " + formatNumber(desc.bending.maxForce)};
+  if (desc.bending.enabled && (!isPositive(desc.bending.frequency) || !(desc.bending.dampingRatio >= 0)))
+    return Error{who + ": bending frequency must be positive and its damping ratio >= 0"};
+  if (!(std::isfinite(desc.damping) && desc.damping >= 0))
+    return Error{who + ": damping must be >= 0 per second and finite, got " + formatNumber(desc.damping)};
   if (!(std::isfinite(desc.collision.thickness) && desc.collision.thickness >= 0))
     return Error{who + ": collision thickness must be >= 0 m and finite, got " + formatNumber(desc.collision.thickness)};
   if (!(std::isfinite(desc.collision.friction) && desc.collision.friction >= 0))
@@ -480,10 +521,13 @@ Result<DeformableId> World::addDeformable(const DeformableDesc& desc) {
       row.restDot = bendingDot(x[hinge.i], x[hinge.j], x[hinge.left], x[hinge.right]);
       row.restEdgeLength = (x[hinge.j] - x[hinge.i]).norm();
       row.maxForce = desc.bending.maxForce;
+      row.frequency = desc.bending.frequency;
+      row.dampingRatio = desc.bending.dampingRatio;
       w.rows.bending.push_back(row);
     }
   }
-  DeformableRecord record{desc.name, first, mesh.nodeCount(), mesh, desc.rowSolver, desc.collision, {}, {}};
+  DeformableRecord record{desc.name, first, mesh.nodeCount(), mesh, desc.rowSolver, desc.collision, desc.damping, {},
+                          {}};
   // The collision surface: its triangles, and the nodes on them (every node when it has none).
   std::vector<bool> onSurface(mesh.nodeCount(), mesh.triangles.empty());
   for (const auto& t : mesh.triangles) {

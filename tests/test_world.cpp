@@ -151,7 +151,7 @@ TEST(World, BendingImpulseIsBoundedByItsStrength) {
   row.node = {0, 1, 2, 3};
   row.restDot = -0.5;
   row.restEdgeLength = 1.0;
-  row.maxForce = 0.3;
+  row.maxForce = 0.3;  // a rigid row (the paper's), frequency left infinite
   prepareBending(row, nodes, kStep, 0.1 / kStep);
   std::vector<RigidSolverState> rigid;
   SolverContext ctx{nodes.velocity, nodes.inverseMass, rigid, kStep, 0.1 / kStep};
@@ -166,6 +166,15 @@ TEST(World, BendingImpulseIsBoundedByItsStrength) {
   double rate = row.bias;
   for (int k = 0; k < 4; ++k) rate += row.jacobian[k].dot(nodes.velocity[row.node[k]]);
   EXPECT_NEAR(rate, 0.0, 1e-12);
+  // A soft row (a 10 Hz spring) pushes back less than the rigid one in a step.
+  const double rigidImpulse = std::abs(row.lambda);
+  nodes.velocity[2] = {0, 0, -5};
+  row.frequency = 10.0;
+  prepareBending(row, nodes, kStep, 0.1 / kStep);
+  row.lambda = 0.0;
+  solveBending(row, ctx, stats);
+  EXPECT_GT(std::abs(row.lambda), 0.0);
+  EXPECT_LT(std::abs(row.lambda), rigidImpulse);
 }
 
 TEST(World, MassSpringHangsAtItsStaticExtensionAndOscillatesAtItsFrequency) {

@@ -126,9 +126,13 @@ struct InextensibilitySettings {
   bool shearEdges = false;       // also on the mesh's shear edges (a cloth's diagonals)
 };
 
+// Bending resists folding across each interior edge (paper §4.5) as a damped spring of the
+// given natural frequency, up to maxForce. An infinite frequency makes it the paper's rigid row.
 struct BendingSettings {
   bool enabled = false;
-  double maxForce = 1.0;  // N; bounds |λ| ≤ maxForce·h, i.e. how hard the cloth resists folding
+  double maxForce = 1.0;     // N; bounds |λ| ≤ maxForce·h
+  double frequency = 10.0;   // Hz: how stiff
+  double dampingRatio = 1.0;
 };
 
 struct MassSpringSettings {
@@ -159,6 +163,9 @@ struct DeformableDesc {
   BendingSettings bending;
   CollisionSettings collision;
   RowSolverKind rowSolver = RowSolverKind::Auto;
+  // 1/s: each step, every node loses this fraction per second of its velocity relative to the
+  // body's mean velocity. Internal motion dies down; momentum is untouched.
+  double damping = 0.0;
 };
 
 // A contact of a deformable surface in the last step. Impulses are on the deformable (side A);

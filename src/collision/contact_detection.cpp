@@ -59,8 +59,9 @@ struct Detector {
   std::vector<ContactRow>& contacts;
   std::unordered_set<uint64_t> edgeContacts;  // an edge point is found from both its triangles
 
-  // How far two sides can close in this step, at the speeds they start it with.
-  double closing(const Vec3& a, const Vec3& b) const { return (a - b).norm() * timeStep; }
+  // How far two sides may close in this step: twice what their starting speeds give, since the
+  // solve can speed a node up (a cloth whipping round an edge). Callers add a thickness.
+  double closing(const Vec3& a, const Vec3& b) const { return 2.0 * (a - b).norm() * timeStep; }
 
   void addRigidContact(const CollisionSurface& surface, const std::array<int32_t, 3>& node,
                        const std::array<double, 3>& weight, int count, int32_t body, const Vec3& rigidPoint,
@@ -87,7 +88,7 @@ struct Detector {
       if (anchored.count(nodeBodyKey(n, body))) continue;
       const Vec3& x = nodes.position[n];
       const Vec3 rigidVelocity = shape.linearVelocity + shape.angularVelocity.cross(x - shape.position);
-      const double margin = closing(nodes.velocity[n], rigidVelocity);
+      const double margin = closing(nodes.velocity[n], rigidVelocity) + surface.thickness;
       if ((x - shape.position).norm() > reach + margin) continue;
       const geometry::ShapeDistance d = geometry::distanceToShape(shape.shape, rotation.transpose() * (x - shape.position));
       const double gap = d.distance - surface.thickness;
@@ -114,6 +115,11 @@ struct Detector {
       if (distance < 1e-12) return;
       normal = d / distance;
       gap = distance - radius - surface.thickness;
+      // Only where the face reaches clearly deeper than its vertices (a coarse face across a
+      // round shape); where the nodes hug the shape their own contacts hold it, and near copies
+      // of them would only make the solve ill-conditioned.
+      const double vertices = std::min({(a - point).norm(), (b - point).norm(), (c - point).norm()});
+      if (distance > vertices - 0.5 * surface.thickness) return;
     } else {  // a corner: along the face normal, on the side away from the body
       normal = (b - a).cross(c - a).normalized();
       if (normal.dot(onFace - shape.position) < 0) normal = -normal;
@@ -124,7 +130,7 @@ struct Detector {
     Vec3 faceVelocity = w[0] * nodes.velocity[face[0]] + w[1] * nodes.velocity[face[1]] + w[2] * nodes.velocity[face[2]];
     const Vec3 rigidPoint = point + radius * normal;
     const Vec3 rigidVelocity = shape.linearVelocity + shape.angularVelocity.cross(rigidPoint - shape.position);
-    if (gap > closing(faceVelocity, rigidVelocity)) return;
+    if (gap > closing(faceVelocity, rigidVelocity) + surface.thickness) return;
     uint64_t key;
     const int zero = w[0] == 0 ? 0 : w[1] == 0 ? 1 : w[2] == 0 ? 2 : -1;
     if (zero >= 0) {  // on an edge, shared with the neighbouring triangle
@@ -252,7 +258,7 @@ struct Detector {
           const double distance = (x - onFace).norm();
           const Vec3 faceVelocity = w[0] * nodes.velocity[face.node[0]] + w[1] * nodes.velocity[face.node[1]] +
                                     w[2] * nodes.velocity[face.node[2]];
-          if (distance - thickness > closing(nodes.velocity[n], faceVelocity)) continue;
+          if (distance - thickness > closing(nodes.velocity[n], faceVelocity) + thickness) continue;
           if (face.surface == static_cast<int32_t>(s) && nearAtRest(surface, n, face.node, thickness)) continue;
           Vec3 normal = distance > 1e-9 ? Vec3((x - onFace) / distance) : (b - a).cross(c - a).normalized();
           ContactRow row;
@@ -269,14 +275,15 @@ struct Detector {
     }
   }
 
-  // A node and a face of the same surface that were within reach at rest are neighbours, not
-  // a collision.
+  // A node and a face of the same surface that were close at rest (within two of the face's
+  // edge lengths, or the contact distance) are neighbours, not a collision.
   static bool nearAtRest(const CollisionSurface& surface, int32_t node, const std::array<int32_t, 3>& face,
                          double thickness) {
     auto rest = [&](int32_t n) { return surface.restPositions[n - surface.firstNode]; };
-    const std::array<double, 3> w = closestOnTriangle(rest(node), rest(face[0]), rest(face[1]), rest(face[2]));
-    const Vec3 onFace = w[0] * rest(face[0]) + w[1] * rest(face[1]) + w[2] * rest(face[2]);
-    return (rest(node) - onFace).norm() < 2.0 * thickness;
+    const Vec3 &a = rest(face[0]), &b = rest(face[1]), &c = rest(face[2]);
+    const std::array<double, 3> w = closestOnTriangle(rest(node), a, b, c);
+    const double edge = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+    return (rest(node) - (w[0] * a + w[1] * b + w[2] * c)).norm() < std::max(2.0 * edge, 2.0 * thickness);
   }
 };
 

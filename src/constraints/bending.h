@@ -10,9 +10,16 @@
 //   Ċ  = [ v_L·(x_R − x_C) + v_R·(x_L − x_C) − (v_i + v_j)·(x_D − x_C) ] / L
 //   J  = [ −(x_D − x_C)ᵀ, −(x_D − x_C)ᵀ, (x_R − x_C)ᵀ, (x_L − x_C)ᵀ ] / L   (i, j, L, R)
 //   K  = Σₖ mₖ⁻¹ |Jₖ|²,   effective mass K⁻¹
-//   bias b = β C,   β = baumgarte / h   (the paper's bias, −β|n_L·n_R − n⁰_L·n⁰_R|, has one
-//            sign whatever the direction of the error; Tandem's is the constraint's own error)
 //   λ ∈ [−F h, F h]: F (newtons) is the bending strength
+//
+// Soft, not rigid. The paper's row is rigid (bias β C, the paper's −β|n_L·n_R − n⁰_L·n⁰_R| having
+// one sign whatever the direction of the error) and bounded, and a rigid row that saturates at
+// its bound switches between ±F h like a relay, which sustains oscillations: a cloth draped
+// over an edge keeps swinging. Tandem makes the row a damped spring on C of natural frequency
+// f and damping ratio ζ (Box2D v3's soft step, independent of the masses):
+//   ω = 2π f,  a₁ = 2ζ + h ω,  a₂ = h ω a₁,  a₃ = 1 / (1 + a₂)
+//   Δλ = −a₂ a₃ K⁻¹ (Ċ + (ω / a₁) C) − a₃ λ,   then the bound on λ
+// An infinite frequency gives back the paper's rigid row (bias β C, no softening).
 //
 // Σ J = [−2(x_D − x_C) + (x_R − x_C) + (x_L − x_C)] / L = 0, so momentum is conserved.
 // Like the paper's, this C is quadratic in the fold angle near a flat rest state: the rows
@@ -21,8 +28,11 @@
 
 #include "solver/solver_state.h"
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 
 namespace tandem {
 
@@ -32,10 +42,14 @@ struct BendingRow {
   double restDot = 0.0;         // C⁰, m²
   double restEdgeLength = 1.0;  // L, m
   double maxForce = 0.0;        // N
+  double frequency = std::numeric_limits<double>::infinity();  // Hz; infinite: rigid, as the paper
+  double dampingRatio = 1.0;
   // Per step
   std::array<Vec3, 4> jacobian{Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
   double effectiveMass = 0.0;
   double bias = 0.0;
+  double massScale = 1.0;     // a₂ a₃
+  double impulseScale = 0.0;  // a₃
   double maxImpulse = 0.0;
   double lambda = 0.0;
 };
@@ -59,7 +73,19 @@ inline void prepareBending(BendingRow& row, const NodeArrays& nodes, double time
                   (x[row.node[2]] - center) * scale};
   const double inverseMass = nodeInverseMassSum(row.node, row.jacobian, nodes.inverseMass);
   row.effectiveMass = inverseMass > 1e-12 ? 1.0 / inverseMass : 0.0;
-  row.bias = biasRate * bendingError(row, x);
+  if (std::isinf(row.frequency)) {  // rigid, as the paper
+    row.bias = biasRate * bendingError(row, x);
+    row.massScale = 1.0;
+    row.impulseScale = 0.0;
+  } else {
+    const double omega = 2 * 3.14159265358979323846 * row.frequency;
+    const double a1 = 2 * row.dampingRatio + timeStep * omega;
+    const double a2 = timeStep * omega * a1;
+    const double a3 = 1.0 / (1.0 + a2);
+    row.bias = omega / a1 * bendingError(row, x);
+    row.massScale = a2 * a3;
+    row.impulseScale = a3;
+  }
   row.maxImpulse = row.maxForce * timeStep;
   if (row.effectiveMass == 0.0) row.lambda = 0.0;
 }
@@ -70,8 +96,14 @@ inline void warmStartBending(const BendingRow& row, SolverContext& ctx) {
 
 inline void solveBending(BendingRow& row, SolverContext& ctx, SweepStats& stats) {
   if (row.effectiveMass == 0.0) return;
-  stats.add(solveNodeRow(row.node, row.jacobian, row.effectiveMass, row.bias, -row.maxImpulse, row.maxImpulse,
-                         row.lambda, ctx));
+  double rate = row.bias;
+  for (size_t k = 0; k < 4; ++k) rate += row.jacobian[k].dot(ctx.velocity[row.node[k]]);
+  const double previous = row.lambda;
+  row.lambda = std::clamp(previous - row.massScale * row.effectiveMass * rate - row.impulseScale * previous,
+                          -row.maxImpulse, row.maxImpulse);
+  const double delta = row.lambda - previous;
+  applyNodeImpulse(row.node, row.jacobian, delta, ctx);
+  stats.add(delta);
 }
 
 }  // namespace tandem

@@ -64,7 +64,7 @@ struct ContactRow {
   double pressureBound = 0.0;              // μ m |g·n| h, for the pressure model
   double lambdaNormal = 0.0;               // N·s, ≥ 0
   Eigen::Vector2d lambdaTangent = Eigen::Vector2d::Zero();
-  bool inDirectBlock = false;
+  bool inDirectBlock = false;  // its normal row is solved by a direct block
 
   Vec3 impulse() const { return lambdaNormal * normal + lambdaTangent[0] * tangent1 + lambdaTangent[1] * tangent2; }
 };
@@ -112,7 +112,11 @@ inline void prepareContact(ContactRow& row, std::span<const Vec3> velocity, std:
   basis << row.tangent1, row.tangent2;
   const Eigen::Matrix2d tangent = basis.transpose() * k * basis;
   row.tangentMass = tangent.determinant() > 1e-18 ? Eigen::Matrix2d(tangent.inverse()) : Eigen::Matrix2d::Zero();
-  row.bias = row.gap > 0 ? row.gap / timeStep : biasRate * std::min(row.gap + slop, 0.0);
+  // Speculative only: penetration is pushed out by position (see pushOutOfContacts), not by a
+  // velocity that would make a resting node bounce.
+  (void)biasRate;
+  (void)slop;
+  row.bias = row.gap > 0 ? row.gap / timeStep : 0.0;
   row.pressureBound = row.friction * row.contactMass * std::abs(gravity.dot(row.normal)) * timeStep;
 }
 

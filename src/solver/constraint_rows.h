@@ -78,6 +78,15 @@ struct ConstraintRows {
       if (!row.inDirectBlock) solveContactNormal(row, ctx, stats);
     for (ContactRow& row : contacts) solveContactFriction(row, friction, ctx, stats);
   }
+
+  // The contacts no direct block holds, once more after the blocks: a block knows nothing of
+  // them (cloth on cloth links two blocks), and surfaces must not end a sweep interpenetrating.
+  // (Friction is not repeated here: the blocks' projection would keep the rigid side of a
+  // second friction impulse and drop the cloth's, feeding energy into a body resting on cloth.)
+  void sweepFreeContacts(SolverContext& ctx, SweepStats& stats) {
+    for (ContactRow& row : contacts)
+      if (!row.inDirectBlock) solveContactNormal(row, ctx, stats);
+  }
 };
 
 }  // namespace tandem

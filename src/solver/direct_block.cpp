@@ -70,7 +70,13 @@ void DirectBlock::addContacts(ConstraintRows& rows, double slop) {
   m_bodies.resize(m_persistentBodies);
   for (size_t i = 0; i < rows.contacts.size(); ++i) {
     ContactRow& row = rows.contacts[i];
-    if (row.gap > slop || row.normalMass == 0.0) continue;
+    // Contacts with rigid bodies only: two surfaces of deformables (or one folded on itself)
+    // can be pressed into shapes their own rows do not allow, an infeasible set for a direct
+    // solve; the PGS sweep handles those, with the last word in each iteration.
+    // Touching, or pushing last step (its warm-start impulse): hysteresis, so a resting contact
+    // whose gap hovers around the slop does not flip between the block and the sweep.
+    const bool touching = row.gap <= slop || row.lambdaNormal > 0.0;
+    if (row.body < 0 || !touching || row.normalMass == 0.0) continue;
     bool owned = true;
     for (int k = 0; k < 4; ++k) owned &= row.coefficient[k] == 0.0 || localNode(row.node[k]) >= 0;
     if (!owned) continue;
@@ -205,14 +211,15 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
       }
       case RowType::Contact: {
         const ContactRow& row = rows.contacts[ref.index];
+        const Vec3& axis = row.normal;
         for (int k = 0; k < 4; ++k)
           if (row.coefficient[k] != 0.0)
-            add(nodeDof(row.node[k]), row.coefficient[k] * row.normal, nodes.inverseMass[row.node[k]]);
+            add(nodeDof(row.node[k]), row.coefficient[k] * axis, nodes.inverseMass[row.node[k]]);
         if (row.body >= 0) {
           const RigidSolverState& body = rigid[row.body];
           const int32_t dof = bodyDof(row.body);
-          add(dof, -row.normal, body.inverseMass);
-          const Vec3 angular = row.normal.cross(row.offset);
+          add(dof, -axis, body.inverseMass);
+          const Vec3 angular = axis.cross(row.offset);
           if (dof >= 0) add(dof + 3, angular, 0.0);
           inverseMassSum += angular.dot(body.inverseInertia * angular);
         }
@@ -257,13 +264,15 @@ void DirectBlock::factorise() {
   const Eigen::Index size = m_dofCount + scalarRowCount();
   SparseMatrix kkt(size, size);
   kkt.setFromTriplets(m_entries.begin(), m_entries.end());
-  // The pattern depends only on which nodes are pinned, which bodies can move, and the rows.
-  std::vector<int32_t> layout = m_nodeDof;
-  layout.insert(layout.end(), m_bodyDof.begin(), m_bodyDof.end());
-  if (layout != m_analysedLayout || kkt.nonZeros() != m_analysedNonZeros) {
+  // The ordering and symbolic factorisation are redone only when the sparsity pattern changes
+  // (pinned nodes, movable bodies, the contacts in the block).
+  kkt.makeCompressed();
+  const std::span<const int> outer(kkt.outerIndexPtr(), static_cast<size_t>(kkt.outerSize()) + 1);
+  const std::span<const int> inner(kkt.innerIndexPtr(), static_cast<size_t>(kkt.nonZeros()));
+  if (!std::ranges::equal(outer, m_analysedOuter) || !std::ranges::equal(inner, m_analysedInner)) {
     m_factor->analyzePattern(kkt);
-    m_analysedLayout = std::move(layout);
-    m_analysedNonZeros = kkt.nonZeros();
+    m_analysedOuter.assign(outer.begin(), outer.end());
+    m_analysedInner.assign(inner.begin(), inner.end());
   }
   m_factor->factorize(kkt);
   m_factorOk = m_factor->info() == Eigen::Success;
@@ -314,12 +323,14 @@ void DirectBlock::solve(ConstraintRows& rows, SolverContext& ctx, SweepStats& st
   const int32_t rowCount = scalarRowCount();
   // Active set over the contacts: solve; a contact that would end up pulling is released (its
   // impulse so far taken back as a known load on the block) and the block solved again.
-  Eigen::VectorXd releasedImpulse = Eigen::VectorXd::Zero(rowCount);  // −λ so far, per released row
+  // Rows released in an earlier sweep belong to the PGS sweep now and are left alone.
+  std::vector<bool> releasedHere(rowCount, false);
+  Eigen::VectorXd prescribed = Eigen::VectorXd::Zero(rowCount);  // Δλ = −λ so far, per row released here
   for (int round = 0;; ++round) {
     for (int32_t r = 0; r < rowCount; ++r)
-      if (m_released[r]) releasedImpulse[r] = -rows.contacts[m_rows[r].index].lambdaNormal;
+      if (releasedHere[r]) prescribed[r] = -rows.contacts[m_rows[r].index].lambdaNormal;
     m_rhs.resize(m_dofCount + rowCount);
-    m_rhs.head(m_dofCount) = m_jacobianT * releasedImpulse;
+    m_rhs.head(m_dofCount) = m_jacobianT * prescribed;
     for (int32_t r = 0; r < rowCount; ++r)
       m_rhs[m_dofCount + r] = m_active[r] && !m_released[r] ? -(rowVelocity(rows, m_rows[r], ctx) + m_bias[r]) : 0.0;
     m_solution = m_factor->solve(m_rhs);
@@ -335,14 +346,17 @@ void DirectBlock::solve(ConstraintRows& rows, SolverContext& ctx, SweepStats& st
       const double total = rows.contacts[m_rows[r].index].lambdaNormal - m_solution[m_dofCount + r];
       if (!m_released[r] && total < 0.0) {
         release(static_cast<int32_t>(r));
-        released = true;
+        releasedHere[r] = released = true;
       }
     }
     if (!released || round == kMaxReleaseRounds) break;
     factorise();
   }
+  // A released contact goes back to the PGS sweep, which may still push with it.
+  for (size_t r = m_persistentRows; r < m_rows.size(); ++r)
+    if (m_released[r]) rows.contacts[m_rows[r].index].inDirectBlock = false;
   for (int32_t r = 0; r < rowCount; ++r)
-    if (m_released[r]) m_solution[m_dofCount + r] = -releasedImpulse[r];  // Δλ = −λ so far
+    if (m_released[r]) m_solution[m_dofCount + r] = releasedHere[r] ? -prescribed[r] : 0.0;
 
   // Velocities from the impulses, M Δv = Jᵀ Δλ − h² K_g Δv, with Δv in the stiffness term taken
   // from the solve: the stiffness forces cancel in pairs, so momentum changes by exactly Jᵀ Δλ

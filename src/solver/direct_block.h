@@ -107,8 +107,7 @@ class DirectBlock {
   // Eigen's factorisations cannot move; the block can.
   std::unique_ptr<Eigen::SimplicialLDLT<SparseMatrix>> m_factor = std::make_unique<Eigen::SimplicialLDLT<SparseMatrix>>();
   bool m_factorOk = false;
-  std::vector<int32_t> m_analysedLayout;  // the degrees of freedom the ordering was computed for
-  Eigen::Index m_analysedNonZeros = -1;
+  std::vector<int> m_analysedOuter, m_analysedInner;  // the pattern the ordering was computed for
   Eigen::VectorXd m_rhs, m_solution, m_impulse;
   SparseMatrix m_jacobianT;         // Jᵀ: dofs × rows
   Eigen::VectorXd m_inverseMass;    // per degree of freedom (linear ones; nodes and bodies)
