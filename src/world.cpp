@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <set>
 #include <cmath>
 #include <string>
 #include <unordered_map>
@@ -18,6 +19,9 @@ namespace tandem {
 namespace {
 
 bool isPositive(double value) { return value > 0 && !std::isnan(value); }  // +inf allowed
+
+// Passes over the contacts no direct block holds, after the blocks, in each iteration.
+constexpr int kFreeContactPasses = 4;
 
 struct DeformableRecord {
   std::string name;
@@ -29,6 +33,7 @@ struct DeformableRecord {
   double damping = 0.0;
   std::vector<int32_t> surfaceNodes;                       // global indices
   std::vector<std::array<int32_t, 3>> surfaceTriangles;    // global indices
+  std::vector<std::array<int32_t, 2>> surfaceEdges;        // global indices
 };
 
 class StageClock {
@@ -190,8 +195,8 @@ struct World::Impl final : bullet::SolverHooks {
     for (const DeformableRecord& body : deformables) {
       if (!body.collision.enabled) continue;
       surfaces.push_back({body.firstNode, body.nodeCount, body.surfaceNodes, body.surfaceTriangles,
-                          body.restMesh.positions, body.collision.thickness, body.collision.friction,
-                          body.collision.selfCollision});
+                          body.surfaceEdges, body.restMesh.positions, body.collision.thickness,
+                          body.collision.friction, body.collision.selfCollision});
     }
     std::vector<CollisionRigid> shapes(bullet.rigidBodyCount());
     for (int b = 0; b < bullet.rigidBodyCount(); ++b)
@@ -320,7 +325,10 @@ struct World::Impl final : bullet::SolverHooks {
     SweepStats stats;
     rows.sweep(ctx, settings.solver.friction, stats);
     for (DirectBlock& block : directBlocks) block.solve(rows, ctx, stats);
-    if (!directBlocks.empty()) rows.sweepFreeContacts(ctx, stats);
+    // Contacts among deformables couple in crowds (a cloth folded on itself); they are cheap
+    // next to a block, so they get several passes.
+    if (!directBlocks.empty())
+      for (int pass = 0; pass < kFreeContactPasses; ++pass) rows.sweepFreeContacts(ctx, stats);
     report.rmsDeltaLambda.push_back(stats.rows ? std::sqrt(stats.sumSquares / static_cast<double>(stats.rows)) : 0.0);
     bullet.storeRigidVelocities(rigid);
   }
@@ -527,7 +535,7 @@ Result<DeformableId> World::addDeformable(const DeformableDesc& desc) {
     }
   }
   DeformableRecord record{desc.name, first, mesh.nodeCount(), mesh, desc.rowSolver, desc.collision, desc.damping, {},
-                          {}};
+                          {}, {}};
   // The collision surface: its triangles, and the nodes on them (every node when it has none).
   std::vector<bool> onSurface(mesh.nodeCount(), mesh.triangles.empty());
   for (const auto& t : mesh.triangles) {
@@ -536,6 +544,13 @@ Result<DeformableId> World::addDeformable(const DeformableDesc& desc) {
   }
   for (int32_t n = 0; n < mesh.nodeCount(); ++n)
     if (onSurface[n]) record.surfaceNodes.push_back(first + n);
+  // Its edges: the triangles' (each once), or a rope's.
+  std::set<std::pair<int32_t, int32_t>> edges;
+  for (const auto& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) edges.insert({std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])});
+  if (mesh.triangles.empty())
+    for (const auto& e : mesh.edges) edges.insert({std::min(e[0], e[1]), std::max(e[0], e[1])});
+  for (const auto& [i, j] : edges) record.surfaceEdges.push_back({first + i, first + j});
   w.deformables.push_back(std::move(record));
   w.directBlocksStale = true;
   return DeformableId{static_cast<int32_t>(w.deformables.size()) - 1};

@@ -14,7 +14,7 @@ namespace {
 using geometry::closestOnTriangle;
 
 // Feature keys for warm starting: what touches what, packed in 64 bits.
-enum class Feature : uint64_t { NodeRigid = 1, FaceRigid = 2, NodeFace = 3 };
+enum class Feature : uint64_t { NodeRigid = 1, FaceRigid = 2, NodeFace = 3, EdgeEdge = 4 };
 uint64_t featureKey(Feature kind, uint64_t a, uint64_t b, uint64_t c = 0) {
   return (static_cast<uint64_t>(kind) << 60) ^ (a * 0x9E3779B97F4A7C15ull) ^ (b * 0xC2B2AE3D27D4EB4Full) ^
          (c * 0x165667B19E3779F9ull);
@@ -173,17 +173,13 @@ struct Detector {
     }
   }
 
-  // Node against face, between surfaces and within one, over a spatial hash of the faces.
-  void nodesAgainstFaces() {
-    struct Face {
-      int32_t surface;
-      std::array<int32_t, 3> node;
-    };
-    // Which surfaces' nodes can meet which surfaces' faces: their own when self-colliding,
-    // others' when their padded bounding boxes overlap.
+  // Which surfaces can touch which: themselves when self-colliding, others when their padded
+  // bounding boxes overlap. meets[a * count + b].
+  std::vector<char> meets;
+  double largestPad = 0.0;
+  void findMeetingSurfaces() {
     const size_t count = surfaces.size();
     std::vector<Eigen::AlignedBox3d> bounds(count);
-    double largestPad = 0.0;
     for (size_t s = 0; s < count; ++s) {
       double fastest = 0.0;
       for (int32_t n : surfaces[s].nodes) {
@@ -195,36 +191,59 @@ struct Detector {
       bounds[s].min().array() -= pad;
       bounds[s].max().array() += pad;
     }
-    std::vector<char> meets(count * count, 0);  // meets[nodesOf * count + facesOf]
-    std::vector<char> facesNeeded(count, 0), nodesNeeded(count, 0);
+    meets.assign(count * count, 0);
     for (size_t a = 0; a < count; ++a)
-      for (size_t b = 0; b < count; ++b) {
-        if (surfaces[b].triangles.empty()) continue;
-        const bool pair = a == b ? surfaces[a].selfCollision : bounds[a].intersects(bounds[b]);
-        if (!pair) continue;
-        meets[a * count + b] = 1;
-        nodesNeeded[a] = facesNeeded[b] = 1;
-      }
+      for (size_t b = 0; b < count; ++b)
+        meets[a * count + b] = a == b ? surfaces[a].selfCollision : bounds[a].intersects(bounds[b]);
+  }
+
+  // A sorted spatial hash: (cell, item) pairs for boxes padded by the largest pad.
+  struct Grid {
+    double cell = 1.0;
+    std::vector<std::pair<uint64_t, int32_t>> entries;
+    Eigen::Vector3i cellOf(const Vec3& p) const {
+      return Eigen::Vector3i(static_cast<int>(std::floor(p.x() / cell)), static_cast<int>(std::floor(p.y() / cell)),
+                             static_cast<int>(std::floor(p.z() / cell)));
+    }
+    static uint64_t hash(const Eigen::Vector3i& c) {
+      return static_cast<uint64_t>(c.x()) * 73856093ull ^ static_cast<uint64_t>(c.y()) * 19349663ull ^
+             static_cast<uint64_t>(c.z()) * 83492791ull;
+    }
+    void insert(const Vec3& low, const Vec3& high, int32_t item) {
+      const Eigen::Vector3i from = cellOf(low), to = cellOf(high);
+      for (int x = from.x(); x <= to.x(); ++x)
+        for (int y = from.y(); y <= to.y(); ++y)
+          for (int z = from.z(); z <= to.z(); ++z) entries.emplace_back(hash({x, y, z}), item);
+    }
+    template <class Visit>
+    void visit(const Vec3& p, Visit&& visitItem) const {
+      const uint64_t key = hash(cellOf(p));
+      for (auto it = std::lower_bound(entries.begin(), entries.end(), std::make_pair(key, INT32_MIN));
+           it != entries.end() && it->first == key; ++it)
+        visitItem(it->second);
+    }
+  };
+
+  // Node against face, between surfaces and within one, over a spatial hash of the faces.
+  void nodesAgainstFaces() {
+    const size_t count = surfaces.size();
+    struct Face {
+      int32_t surface;
+      std::array<int32_t, 3> node;
+    };
     std::vector<Face> faces;
-    double cell = 0.0;
+    Grid grid;
+    grid.cell = largestPad;
     for (size_t s = 0; s < count; ++s) {
-      if (!facesNeeded[s]) continue;
+      bool needed = false;
+      for (size_t a = 0; a < count; ++a) needed |= meets[a * count + s] != 0;
+      if (!needed) continue;
       for (const auto& face : surfaces[s].triangles) {
         faces.push_back({static_cast<int32_t>(s), face});
-        cell = std::max(cell, (nodes.position[face[1]] - nodes.position[face[0]]).norm());
+        grid.cell = std::max(grid.cell, (nodes.position[face[1]] - nodes.position[face[0]]).norm());
       }
     }
     if (faces.empty()) return;
-    cell = std::max(cell, largestPad);
-    auto cellOf = [cell](const Vec3& p) {
-      return Eigen::Vector3i(static_cast<int>(std::floor(p.x() / cell)), static_cast<int>(std::floor(p.y() / cell)),
-                             static_cast<int>(std::floor(p.z() / cell)));
-    };
-    auto hash = [](const Eigen::Vector3i& c) {
-      return static_cast<uint64_t>(c.x()) * 73856093ull ^ static_cast<uint64_t>(c.y()) * 19349663ull ^
-             static_cast<uint64_t>(c.z()) * 83492791ull;
-    };
-    std::vector<std::pair<uint64_t, int32_t>> grid;
     for (size_t f = 0; f < faces.size(); ++f) {
       const auto& node = faces[f].node;
       Vec3 low = nodes.position[node[0]], high = low;
@@ -232,25 +251,19 @@ struct Detector {
         low = low.cwiseMin(nodes.position[node[k]]);
         high = high.cwiseMax(nodes.position[node[k]]);
       }
-      const Eigen::Vector3i from = cellOf(low - Vec3::Constant(largestPad)), to = cellOf(high + Vec3::Constant(largestPad));
-      for (int x = from.x(); x <= to.x(); ++x)
-        for (int y = from.y(); y <= to.y(); ++y)
-          for (int z = from.z(); z <= to.z(); ++z) grid.emplace_back(hash({x, y, z}), static_cast<int32_t>(f));
+      grid.insert(low - Vec3::Constant(largestPad), high + Vec3::Constant(largestPad), static_cast<int32_t>(f));
     }
-    std::sort(grid.begin(), grid.end());
+    std::sort(grid.entries.begin(), grid.entries.end());
 
     for (size_t s = 0; s < count; ++s) {
-      if (!nodesNeeded[s]) continue;
       const CollisionSurface& surface = surfaces[s];
       for (int32_t n : surface.nodes) {
         const Vec3& x = nodes.position[n];
-        const uint64_t key = hash(cellOf(x));
-        auto it = std::lower_bound(grid.begin(), grid.end(), std::make_pair(key, INT32_MIN));
-        for (; it != grid.end() && it->first == key; ++it) {
-          const Face& face = faces[it->second];
+        grid.visit(x, [&](int32_t f) {
+          const Face& face = faces[f];
           const CollisionSurface& other = surfaces[face.surface];
-          if (!meets[s * count + face.surface]) continue;
-          if (face.node[0] == n || face.node[1] == n || face.node[2] == n) continue;
+          if (!meets[s * count + face.surface]) return;
+          if (face.node[0] == n || face.node[1] == n || face.node[2] == n) return;
           const double thickness = surface.thickness + other.thickness;
           const Vec3 &a = nodes.position[face.node[0]], &b = nodes.position[face.node[1]], &c = nodes.position[face.node[2]];
           const std::array<double, 3> w = closestOnTriangle(x, a, b, c);
@@ -258,9 +271,9 @@ struct Detector {
           const double distance = (x - onFace).norm();
           const Vec3 faceVelocity = w[0] * nodes.velocity[face.node[0]] + w[1] * nodes.velocity[face.node[1]] +
                                     w[2] * nodes.velocity[face.node[2]];
-          if (distance - thickness > closing(nodes.velocity[n], faceVelocity) + thickness) continue;
-          if (face.surface == static_cast<int32_t>(s) && nearAtRest(surface, n, face.node, thickness)) continue;
-          Vec3 normal = distance > 1e-9 ? Vec3((x - onFace) / distance) : (b - a).cross(c - a).normalized();
+          if (distance - thickness > closing(nodes.velocity[n], faceVelocity) + thickness) return;
+          if (face.surface == static_cast<int32_t>(s) && nearAtRest(surface, n, face.node)) return;
+          const Vec3 normal = distance > 1e-9 ? Vec3((x - onFace) / distance) : (b - a).cross(c - a).normalized();
           ContactRow row;
           row.node = {n, face.node[0], face.node[1], face.node[2]};
           row.coefficient = {1.0, -w[0], -w[1], -w[2]};
@@ -270,20 +283,96 @@ struct Detector {
           row.key = featureKey(Feature::NodeFace, n, face.node[0] ^ (static_cast<uint64_t>(face.node[1]) << 21),
                                face.node[2]);
           contacts.push_back(row);
-        }
+        });
       }
     }
   }
 
-  // A node and a face of the same surface that were close at rest (within two of the face's
-  // edge lengths, or the contact distance) are neighbours, not a collision.
-  static bool nearAtRest(const CollisionSurface& surface, int32_t node, const std::array<int32_t, 3>& face,
-                         double thickness) {
-    auto rest = [&](int32_t n) { return surface.restPositions[n - surface.firstNode]; };
-    const Vec3 &a = rest(face[0]), &b = rest(face[1]), &c = rest(face[2]);
-    const std::array<double, 3> w = closestOnTriangle(rest(node), a, b, c);
+  // Edge against edge, for the same pairs of surfaces: the crossing that node–face contacts
+  // miss when two edges scissor between their nodes.
+  void edgesAgainstEdges() {
+    const size_t count = surfaces.size();
+    struct Edge {
+      int32_t surface;
+      std::array<int32_t, 2> node;
+    };
+    std::vector<Edge> edges;
+    Grid grid;
+    grid.cell = largestPad;
+    for (size_t s = 0; s < count; ++s) {
+      bool needed = false;
+      for (size_t a = 0; a < count; ++a) needed |= meets[a * count + s] != 0;
+      if (!needed) continue;
+      for (const auto& edge : surfaces[s].edges) {
+        edges.push_back({static_cast<int32_t>(s), edge});
+        grid.cell = std::max(grid.cell, (nodes.position[edge[1]] - nodes.position[edge[0]]).norm());
+      }
+    }
+    if (edges.empty()) return;
+    for (size_t e = 0; e < edges.size(); ++e) {
+      const Vec3 &a = nodes.position[edges[e].node[0]], &b = nodes.position[edges[e].node[1]];
+      grid.insert(a.cwiseMin(b) - Vec3::Constant(largestPad), a.cwiseMax(b) + Vec3::Constant(largestPad),
+                  static_cast<int32_t>(e));
+    }
+    std::sort(grid.entries.begin(), grid.entries.end());
+    std::unordered_set<uint64_t> seen;
+    for (size_t e = 0; e < edges.size(); ++e) {
+      const Edge& first = edges[e];
+      const Vec3 &p0 = nodes.position[first.node[0]], &p1 = nodes.position[first.node[1]];
+      grid.visit(0.5 * (p0 + p1), [&](int32_t f) {
+        if (f <= static_cast<int32_t>(e)) return;  // each pair once
+        const Edge& second = edges[f];
+        if (!meets[first.surface * count + second.surface] && !meets[second.surface * count + first.surface]) return;
+        const auto [i0, i1] = first.node;
+        const auto [j0, j1] = second.node;
+        if (i0 == j0 || i0 == j1 || i1 == j0 || i1 == j1) return;
+        const Vec3 &q0 = nodes.position[j0], &q1 = nodes.position[j1];
+        const auto [s, t] = geometry::closestOnSegments(p0, p1, q0, q1);
+        // End points are the node–face contacts' business.
+        if (s <= 1e-6 || s >= 1 - 1e-6 || t <= 1e-6 || t >= 1 - 1e-6) return;
+        const CollisionSurface &a = surfaces[first.surface], &b = surfaces[second.surface];
+        const double thickness = a.thickness + b.thickness;
+        const Vec3 onFirst = p0 + s * (p1 - p0), onSecond = q0 + t * (q1 - q0);
+        const double distance = (onFirst - onSecond).norm();
+        if (distance < 1e-9) return;
+        const Vec3 firstVelocity = (1 - s) * nodes.velocity[i0] + s * nodes.velocity[i1];
+        const Vec3 secondVelocity = (1 - t) * nodes.velocity[j0] + t * nodes.velocity[j1];
+        if (distance - thickness > closing(firstVelocity, secondVelocity) + thickness) return;
+        if (first.surface == second.surface && nearAtRest(a, first.node, second.node)) return;
+        const uint64_t key = featureKey(Feature::EdgeEdge, std::min(i0, i1) ^ (static_cast<uint64_t>(std::max(i0, i1)) << 32),
+                                        std::min(j0, j1) ^ (static_cast<uint64_t>(std::max(j0, j1)) << 32));
+        if (!seen.insert(key).second) return;
+        ContactRow row;
+        row.node = {i0, i1, j0, j1};
+        row.coefficient = {1 - s, s, -(1 - t), -t};
+        row.normal = (onFirst - onSecond) / distance;
+        row.gap = distance - thickness;
+        row.friction = a.friction * b.friction;
+        row.key = key;
+        contacts.push_back(row);
+      });
+    }
+  }
+
+  // Features of the same surface that were close at rest (within kNeighbourhood edge lengths)
+  // are neighbours, not a collision: a node and a face, or two edges.
+  static constexpr double kNeighbourhood = 1.0;
+  static Vec3 rest(const CollisionSurface& surface, int32_t n) { return surface.restPositions[n - surface.firstNode]; }
+
+  static bool nearAtRest(const CollisionSurface& surface, int32_t node, const std::array<int32_t, 3>& face) {
+    const Vec3 a = rest(surface, face[0]), b = rest(surface, face[1]), c = rest(surface, face[2]), x = rest(surface, node);
     const double edge = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
-    return (rest(node) - (w[0] * a + w[1] * b + w[2] * c)).norm() < std::max(2.0 * edge, 2.0 * thickness);
+    const std::array<double, 3> w = closestOnTriangle(x, a, b, c);
+    return (x - (w[0] * a + w[1] * b + w[2] * c)).norm() < kNeighbourhood * edge;
+  }
+
+  static bool nearAtRest(const CollisionSurface& surface, const std::array<int32_t, 2>& first,
+                         const std::array<int32_t, 2>& second) {
+    const Vec3 p0 = rest(surface, first[0]), p1 = rest(surface, first[1]);
+    const Vec3 q0 = rest(surface, second[0]), q1 = rest(surface, second[1]);
+    const auto [s, t] = geometry::closestOnSegments(p0, p1, q0, q1);
+    const double edge = std::max((p1 - p0).norm(), (q1 - q0).norm());
+    return ((p0 + s * (p1 - p0)) - (q0 + t * (q1 - q0))).norm() < kNeighbourhood * edge;
   }
 };
 
@@ -296,13 +385,15 @@ uint64_t nodeBodyKey(int32_t node, int32_t body) {
 void detectContacts(std::span<const CollisionSurface> surfaces, const NodeArrays& nodes,
                     std::span<const CollisionRigid> rigid, const std::unordered_set<uint64_t>& anchored,
                     double timeStep, std::vector<ContactRow>& contacts) {
-  Detector detector{surfaces, nodes, rigid, anchored, timeStep, contacts, {}};
+  Detector detector{surfaces, nodes, rigid, anchored, timeStep, contacts, {}, {}, 0.0};
   for (const CollisionSurface& surface : surfaces)
     for (int32_t body = 0; body < static_cast<int32_t>(rigid.size()); ++body) {
       detector.nodesAgainstRigid(surface, body);
       detector.facesAgainstRigid(surface, body);
     }
+  detector.findMeetingSurfaces();
   detector.nodesAgainstFaces();
+  detector.edgesAgainstEdges();
 
   // The mass a contact moves, for the pressure friction model (paper eq. 32): the nodes' share,
   // plus the rigid body's mass spread over its contacts.

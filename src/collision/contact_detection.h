@@ -8,6 +8,8 @@
 //                          a coarse face between its nodes
 //   node – face            between deformables, and within one (self-collision) except for
 //                          triangles the node belongs to or was already near at rest
+//   edge – edge            the same pairs of surfaces, for edges that cross between their
+//                          nodes (two cloths' edges scissoring, ropes against ropes)
 // Contacts are speculative: any pair closer than the thickness plus the distance the two
 // sides can close in this step is a row, whose bias lets the gap close but not pass.
 // Broad phase: bounding spheres for rigid shapes; a sorted spatial hash of padded triangle
@@ -30,6 +32,7 @@ struct CollisionSurface {
   int32_t nodeCount = 0;
   std::span<const int32_t> nodes;                      // surface nodes, global indices
   std::span<const std::array<int32_t, 3>> triangles;   // global indices
+  std::span<const std::array<int32_t, 2>> edges;       // global indices: the triangles' edges, or a rope's
   std::span<const Vec3> restPositions;                 // by local index, for self-collision
   double thickness = 0.0;
   double friction = 0.0;
