@@ -326,9 +326,9 @@ struct World::Impl final : bullet::SolverHooks {
     rows.sweep(ctx, settings.solver.friction, stats);
     for (DirectBlock& block : directBlocks) block.solve(rows, ctx, stats);
     // Contacts among deformables couple in crowds (a cloth folded on itself); they are cheap
-    // next to a block, so they get several passes.
+    // next to a block, so they get more passes than those with rigid bodies.
     if (!directBlocks.empty())
-      for (int pass = 0; pass < kFreeContactPasses; ++pass) rows.sweepFreeContacts(ctx, stats);
+      for (int pass = 0; pass < kFreeContactPasses; ++pass) rows.sweepFreeContacts(ctx, stats, pass > 0);
     report.rmsDeltaLambda.push_back(stats.rows ? std::sqrt(stats.sumSquares / static_cast<double>(stats.rows)) : 0.0);
     bullet.storeRigidVelocities(rigid);
   }

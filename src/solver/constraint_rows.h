@@ -83,9 +83,9 @@ struct ConstraintRows {
   // them (cloth on cloth links two blocks), and surfaces must not end a sweep interpenetrating.
   // (Friction is not repeated here: the blocks' projection would keep the rigid side of a
   // second friction impulse and drop the cloth's, feeding energy into a body resting on cloth.)
-  void sweepFreeContacts(SolverContext& ctx, SweepStats& stats) {
+  void sweepFreeContacts(SolverContext& ctx, SweepStats& stats, bool betweenDeformablesOnly = false) {
     for (ContactRow& row : contacts)
-      if (!row.inDirectBlock) solveContactNormal(row, ctx, stats);
+      if (!row.inDirectBlock && !(betweenDeformablesOnly && row.body >= 0)) solveContactNormal(row, ctx, stats);
   }
 };
 
