@@ -82,6 +82,26 @@ Status validateShape(const RigidShape& s, const std::string& who) {
       if (!s.planeNormal.allFinite() || s.planeNormal.norm() < 1e-9 || !std::isfinite(s.planeOffset))
         return Error{who + ": plane normal must be a finite non-zero vector and the offset finite"};
       break;
+    case ShapeType::ConvexHull: {
+      if (s.points.size() < 4) return Error{who + ": a convex hull needs at least 4 points"};
+      for (size_t i = 0; i < s.points.size(); ++i)
+        if (!s.points[i].allFinite()) return Error{who + ": convex hull point " + std::to_string(i) + " is not finite"};
+      bool solid = false;  // some four points span a volume
+      for (size_t i = 2; i < s.points.size() && !solid; ++i)
+        for (size_t j = i + 1; j < s.points.size() && !solid; ++j)
+          solid = std::abs((s.points[1] - s.points[0]).dot((s.points[i] - s.points[0]).cross(s.points[j] - s.points[0]))) > 1e-12;
+      if (!solid) return Error{who + ": the convex hull's points are flat (no volume)"};
+      break;
+    }
+    case ShapeType::TriangleMesh: {
+      if (s.triangles.empty()) return Error{who + ": a triangle mesh needs at least one triangle"};
+      DeformableMesh mesh;  // reuse the mesh checks: indices, finiteness, degenerate triangles
+      mesh.positions = s.points;
+      mesh.masses.assign(s.points.size(), 1.0);
+      mesh.triangles = s.triangles;
+      if (Status status = validateMesh(mesh); !status) return Error{who + ": triangle mesh: " + status.message()};
+      break;
+    }
   }
   return {};
 }
@@ -120,6 +140,20 @@ RigidShape RigidShape::plane(const Vec3& normal, double offset) {
   return s;
 }
 
+RigidShape RigidShape::convexHull(std::vector<Vec3> points) {
+  RigidShape s;
+  s.type = ShapeType::ConvexHull;
+  s.points = std::move(points);
+  return s;
+}
+RigidShape RigidShape::triangleMesh(std::vector<Vec3> vertices, std::vector<std::array<int32_t, 3>> triangles) {
+  RigidShape s;
+  s.type = ShapeType::TriangleMesh;
+  s.points = std::move(vertices);
+  s.triangles = std::move(triangles);
+  return s;
+}
+
 AnchorDesc AnchorDesc::node(DeformableId deformable, int32_t node, RigidBodyId body) {
   AnchorDesc desc;
   desc.deformable = deformable;
@@ -134,7 +168,8 @@ struct World::Impl final : bullet::SolverHooks {
   WorldSettings settings;
   bullet::BulletWorld bullet;
   std::vector<std::string> rigidNames;
-  std::vector<RigidBodyDesc> rigidDescs;  // shape and friction, for Tandem's collision detection
+  std::vector<double> rigidFriction;  // for Tandem's collision detection
+  std::vector<std::unique_ptr<geometry::CollisionShape>> rigidShapes;  // shapes with derived data
   std::vector<RigidSolverState> rigid;
 
   NodeArrays nodes;
@@ -200,8 +235,8 @@ struct World::Impl final : bullet::SolverHooks {
     }
     std::vector<CollisionRigid> shapes(bullet.rigidBodyCount());
     for (int b = 0; b < bullet.rigidBodyCount(); ++b)
-      shapes[b] = {rigidDescs[b].shape,         bullet.position(b),        bullet.orientation(b),
-                   bullet.linearVelocity(b),    bullet.angularVelocity(b), rigidDescs[b].friction,
+      shapes[b] = {rigidShapes[b].get(),        bullet.position(b),        bullet.orientation(b),
+                   bullet.linearVelocity(b),    bullet.angularVelocity(b), rigidFriction[b],
                    bullet.mass(b)};
     std::unordered_set<uint64_t> anchored;
     for (const AnchorRow& row : rows.anchors)
@@ -410,8 +445,9 @@ Result<RigidBodyId> World::addRigidBody(const RigidBodyDesc& desc) {
   if (Status s = validateShape(desc.shape, who); !s) return Error{s.message()};
   if (desc.motion == MotionType::Dynamic && !(std::isfinite(desc.mass) && desc.mass > 0))
     return Error{who + ": mass must be positive and finite for a dynamic body, got " + formatNumber(desc.mass) + " kg"};
-  if (desc.shape.type == ShapeType::Plane && desc.motion != MotionType::Static)
-    return Error{who + ": a plane can only be static"};
+  if ((desc.shape.type == ShapeType::Plane || desc.shape.type == ShapeType::TriangleMesh) &&
+      desc.motion != MotionType::Static)
+    return Error{who + ": a plane or a triangle mesh can only be static"};
   if (!desc.position.allFinite()) return Error{who + ": position is not finite"};
   if (!desc.orientation.coeffs().allFinite() || desc.orientation.norm() < 1e-9)
     return Error{who + ": orientation must be a finite non-zero quaternion"};
@@ -423,7 +459,12 @@ Result<RigidBodyId> World::addRigidBody(const RigidBodyDesc& desc) {
     return Error{who + ": restitution must be in [0, 1], got " + formatNumber(desc.restitution)};
   const int index = m_impl->bullet.addRigidBody(desc);
   m_impl->rigidNames.push_back(desc.name);
-  m_impl->rigidDescs.push_back(desc);
+  m_impl->rigidFriction.push_back(desc.friction);
+  auto shape = std::make_unique<geometry::CollisionShape>();
+  shape->shape = desc.shape;
+  if (desc.shape.type == ShapeType::ConvexHull) shape->planes = bullet::convexHullPlanes(desc.shape.points);
+  if (desc.shape.type == ShapeType::TriangleMesh) shape->grid.build(desc.shape.points, desc.shape.triangles);
+  m_impl->rigidShapes.push_back(std::move(shape));
   m_impl->rigid.emplace_back();
   return RigidBodyId{index};
 }

@@ -1,4 +1,5 @@
 // Contacts and friction: cloth against rigid shapes, against cloth and against itself.
+#include "bullet/bullet_world.h"
 #include "collision/geometry.h"
 
 #include <tandem/world.h>
@@ -36,9 +37,29 @@ RigidBodyDesc staticBody(std::string name, const RigidShape& shape, const Vec3& 
   return desc;
 }
 
-double signedDistance(const World& world, RigidBodyId body, const RigidShape& shape, const Vec3& point) {
+// The shape as Tandem's collision detection sees it (with a hull's planes, a mesh's grid).
+geometry::CollisionShape collisionShape(const RigidShape& shape) {
+  geometry::CollisionShape collision;
+  collision.shape = shape;
+  if (shape.type == ShapeType::ConvexHull) collision.planes = bullet::convexHullPlanes(shape.points);
+  if (shape.type == ShapeType::TriangleMesh) collision.grid.build(shape.points, shape.triangles);
+  return collision;
+}
+
+double signedDistance(const World& world, RigidBodyId body, const geometry::CollisionShape& shape, const Vec3& point) {
   const Vec3 local = world.rigidOrientation(body).conjugate() * (point - world.rigidPosition(body));
-  return geometry::distanceToShape(shape, local).distance;
+  return geometry::distanceToShape(shape, local, 1.0).distance;
+}
+
+// A square pyramid, 0.6 m wide and 0.4 m tall, about its base centre.
+RigidShape pyramid() {
+  return RigidShape::convexHull({{-0.3, 0, -0.3}, {0.3, 0, -0.3}, {0.3, 0, 0.3}, {-0.3, 0, 0.3}, {0, 0.4, 0}});
+}
+
+// A roof: a 1.2 m square ridge, 0.3 m high along x = 0, as a static triangle mesh.
+RigidShape roof() {
+  return RigidShape::triangleMesh({{-0.6, 0, -0.6}, {0, 0.3, -0.6}, {0.6, 0, -0.6}, {-0.6, 0, 0.6}, {0, 0.3, 0.6}, {0.6, 0, 0.6}},
+                                  {{0, 3, 1}, {1, 3, 4}, {1, 4, 2}, {2, 4, 5}});
 }
 
 double fastestNode(const World& world, DeformableId id) {
@@ -67,7 +88,8 @@ TEST_P(ClothDrop, RestsOnTheShapeWithoutPenetrating) {
   const DropCase& drop = GetParam();
   World world;
   const RigidBodyId body = *world.addRigidBody(staticBody(drop.name, drop.shape, drop.position));
-  if (drop.shape.type != ShapeType::Plane) {  // on a floor, so the cloth's corners land somewhere
+  const geometry::CollisionShape shape = collisionShape(drop.shape);
+  if (drop.shape.type != ShapeType::Plane && drop.shape.type != ShapeType::TriangleMesh) {  // on a floor
     ASSERT_TRUE(world.addRigidBody(staticBody("floor", RigidShape::plane({0, 1, 0}, 0.0), Vec3::Zero())).ok());
   }
   DeformableDesc desc = clothDesc("cloth", {-0.5, 0.6, -0.5}, 1.0, 21, 0.2);
@@ -77,7 +99,7 @@ TEST_P(ClothDrop, RestsOnTheShapeWithoutPenetrating) {
   double deepest = 1e9;
   for (int step = 0; step < 180; ++step) {  // 3 s
     ASSERT_TRUE(world.step(kStep).ok()) << "step " << step;
-    for (const Vec3& x : world.nodePositions(cloth)) deepest = std::min(deepest, signedDistance(world, body, drop.shape, x));
+    for (const Vec3& x : world.nodePositions(cloth)) deepest = std::min(deepest, signedDistance(world, body, shape, x));
   }
   // No node ever gets inside the shape by more than the thickness (it is kept a thickness out).
   EXPECT_GT(deepest, -thickness) << drop.name;
@@ -94,8 +116,43 @@ INSTANTIATE_TEST_SUITE_P(
     Shapes, ClothDrop,
     ::testing::Values(DropCase{"plane", RigidShape::plane({0, 1, 0}, 0.0), Vec3::Zero()},
                       DropCase{"box", RigidShape::box({0.3, 0.2, 0.3}), Vec3(0, 0.2, 0)},
-                      DropCase{"sphere", RigidShape::sphere(0.3), Vec3(0, 0.3, 0)}),
+                      DropCase{"sphere", RigidShape::sphere(0.3), Vec3(0, 0.3, 0)},
+                      DropCase{"hull", pyramid(), Vec3::Zero()}, DropCase{"mesh", roof(), Vec3::Zero()}),
     [](const ::testing::TestParamInfo<DropCase>& param) { return std::string(param.param.name); });
+
+TEST(Contact, RigidHullRestsOnAStaticMeshAtItsHeight) {
+  World world;
+  const std::vector<Vec3> floor{{-2, 0, -2}, {2, 0, -2}, {2, 0, 2}, {-2, 0, 2}};
+  ASSERT_TRUE(world.addRigidBody(staticBody("floor", RigidShape::triangleMesh(floor, {{0, 2, 1}, {0, 3, 2}}), Vec3::Zero())).ok());
+  RigidBodyDesc tetra;
+  tetra.name = "tetra";
+  tetra.shape = RigidShape::convexHull({{0.2, -0.1, 0}, {-0.1, -0.1, 0.17}, {-0.1, -0.1, -0.17}, {0, 0.2, 0}});
+  tetra.position = {0, 0.5, 0};
+  const RigidBodyId body = *world.addRigidBody(tetra);
+  for (int step = 0; step < 180; ++step) ASSERT_TRUE(world.step(kStep).ok());
+  // Its base (0.1 m below its frame's origin) on the floor, within Bullet's collision margins.
+  EXPECT_NEAR(world.rigidPosition(body).y(), 0.1, 0.02);
+  EXPECT_LT(world.rigidLinearVelocity(body).norm(), 0.01);
+}
+
+TEST(Contact, BadHullsAndMeshesAreRefused) {
+  World world;
+  RigidBodyDesc body;
+  body.name = "thing";
+  body.shape = RigidShape::convexHull({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+  EXPECT_EQ(world.addRigidBody(body).message(), "rigid body 'thing': a convex hull needs at least 4 points");
+  body.shape = RigidShape::convexHull({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}});
+  EXPECT_EQ(world.addRigidBody(body).message(), "rigid body 'thing': the convex hull's points are flat (no volume)");
+  body.shape = RigidShape::convexHull({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, std::nan("")}});
+  EXPECT_EQ(world.addRigidBody(body).message(), "rigid body 'thing': convex hull point 3 is not finite");
+  body.shape = RigidShape::triangleMesh({{0, 0, 0}, {1, 0, 0}, {0, 0, 1}}, {{0, 1, 5}});
+  body.motion = MotionType::Static;
+  EXPECT_EQ(world.addRigidBody(body).message(),
+            "rigid body 'thing': triangle mesh: triangle 0 refers to node 5, but the mesh has 3 nodes");
+  body.shape = RigidShape::triangleMesh({{0, 0, 0}, {1, 0, 0}, {0, 0, 1}}, {{0, 1, 2}});
+  body.motion = MotionType::Dynamic;
+  EXPECT_EQ(world.addRigidBody(body).message(), "rigid body 'thing': a plane or a triangle mesh can only be static");
+}
 
 // ---- A box on a hammock -------------------------------------------------------------------
 

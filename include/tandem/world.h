@@ -5,6 +5,8 @@
 #pragma once
 
 #include <tandem/mesh.h>
+
+#include <array>
 #include <tandem/report.h>
 #include <tandem/types.h>
 
@@ -64,7 +66,7 @@ struct WorldSettings {
 
 // ---- Rigid bodies (Bullet) ------------------------------------------------------------------
 
-enum class ShapeType { Box, Sphere, Cylinder, Capsule, Plane };
+enum class ShapeType { Box, Sphere, Cylinder, Capsule, Plane, ConvexHull, TriangleMesh };
 
 struct RigidShape {
   ShapeType type = ShapeType::Box;
@@ -73,12 +75,16 @@ struct RigidShape {
   double halfHeight = 0.5;          // cylinder, capsule: along the body's local y axis
   Vec3 planeNormal{0.0, 1.0, 0.0};  // plane: points n with n·x = planeOffset
   double planeOffset = 0.0;
+  std::vector<Vec3> points;                       // convex hull: its points; triangle mesh: its vertices
+  std::vector<std::array<int32_t, 3>> triangles;  // triangle mesh (static bodies only)
 
   static RigidShape box(const Vec3& halfExtents);
   static RigidShape sphere(double radius);
   static RigidShape cylinder(double radius, double halfHeight);
   static RigidShape capsule(double radius, double halfHeight);
   static RigidShape plane(const Vec3& normal, double offset);
+  static RigidShape convexHull(std::vector<Vec3> points);  // in the body's frame, about its centre of mass
+  static RigidShape triangleMesh(std::vector<Vec3> vertices, std::vector<std::array<int32_t, 3>> triangles);
 };
 
 enum class MotionType { Dynamic, Static, Kinematic };

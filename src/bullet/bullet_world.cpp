@@ -2,12 +2,16 @@
 
 #include <btBulletDynamicsCommon.h>
 #include <BulletCollision/CollisionDispatch/btSimulationIslandManager.h>
+#include <LinearMath/btConvexHullComputer.h>
 
 #include <cassert>
 #include <vector>
 
 namespace tandem::bullet {
 namespace {
+
+// Collision margin of convex hulls and triangle meshes, which Bullet puts outside the shape (m).
+constexpr btScalar kHullMargin = 0.002;
 
 btVector3 toBt(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
 Vec3 fromBt(const btVector3& v) { return {v.x(), v.y(), v.z()}; }
@@ -107,6 +111,33 @@ class SteppedDynamicsWorld final : public btDiscreteDynamicsWorld {
 
 }  // namespace
 
+std::vector<Eigen::Vector4d> convexHullPlanes(const std::vector<Vec3>& points) {
+  btConvexHullComputer computer;
+  std::vector<double> coordinates;
+  for (const Vec3& p : points) coordinates.insert(coordinates.end(), {p.x(), p.y(), p.z()});
+  computer.compute(coordinates.data(), 3 * static_cast<int>(sizeof(double)), static_cast<int>(points.size()), 0, 0);
+  std::vector<Eigen::Vector4d> planes;
+  for (int f = 0; f < computer.faces.size(); ++f) {
+    // Newell's normal over the face's counter-clockwise vertices.
+    const btConvexHullComputer::Edge* first = &computer.edges[computer.faces[f]];
+    Vec3 normal = Vec3::Zero(), centre = Vec3::Zero();
+    int count = 0;
+    const btConvexHullComputer::Edge* edge = first;
+    do {
+      const Vec3 a = fromBt(computer.vertices[edge->getSourceVertex()]);
+      const Vec3 b = fromBt(computer.vertices[edge->getTargetVertex()]);
+      normal += a.cross(b);
+      centre += a;
+      ++count;
+      edge = edge->getNextEdgeOfFace();
+    } while (edge != first);
+    if (normal.norm() < 1e-12) continue;
+    normal.normalize();
+    planes.emplace_back(normal.x(), normal.y(), normal.z(), normal.dot(centre / count));
+  }
+  return planes;
+}
+
 struct BulletWorld::Impl {
   btDefaultCollisionConfiguration configuration;
   btCollisionDispatcher dispatcher{&configuration};
@@ -118,6 +149,9 @@ struct BulletWorld::Impl {
   std::vector<std::unique_ptr<btDefaultMotionState>> motionStates;
   std::vector<std::unique_ptr<btRigidBody>> bodies;
   std::vector<std::unique_ptr<btTypedConstraint>> joints;
+  std::vector<std::vector<btScalar>> meshVertices;  // kept alive for Bullet's triangle meshes
+  std::vector<std::vector<int>> meshIndices;
+  std::vector<std::unique_ptr<btTriangleIndexVertexArray>> meshArrays;
 
   ~Impl() {
     for (int i = world.getNumConstraints() - 1; i >= 0; --i) world.removeConstraint(world.getConstraint(i));
@@ -153,6 +187,28 @@ int BulletWorld::addRigidBody(const RigidBodyDesc& desc) {
     case ShapeType::Plane:
       shape = std::make_unique<btStaticPlaneShape>(toBt(s.planeNormal.normalized()), s.planeOffset);
       break;
+    case ShapeType::ConvexHull: {
+      auto hull = std::make_unique<btConvexHullShape>();
+      for (const Vec3& p : s.points) hull->addPoint(toBt(p), false);
+      hull->setMargin(kHullMargin);  // Bullet's 4 cm default lies outside the hull: it would look 4 cm larger
+      hull->recalcLocalAabb();
+      shape = std::move(hull);
+      break;
+    }
+    case ShapeType::TriangleMesh: {
+      // Bullet keeps pointers into the arrays: they live as long as the world.
+      auto& vertices = m_impl->meshVertices.emplace_back();
+      auto& indices = m_impl->meshIndices.emplace_back();
+      for (const Vec3& p : s.points) vertices.insert(vertices.end(), {p.x(), p.y(), p.z()});
+      for (const auto& t : s.triangles) indices.insert(indices.end(), {t[0], t[1], t[2]});
+      auto array = std::make_unique<btTriangleIndexVertexArray>(
+          static_cast<int>(s.triangles.size()), indices.data(), 3 * static_cast<int>(sizeof(int)),
+          static_cast<int>(s.points.size()), vertices.data(), 3 * static_cast<int>(sizeof(btScalar)));
+      shape = std::make_unique<btBvhTriangleMeshShape>(array.get(), true);
+      shape->setMargin(kHullMargin);
+      m_impl->meshArrays.push_back(std::move(array));
+      break;
+    }
   }
   const bool dynamic = desc.motion == MotionType::Dynamic;
   const double mass = dynamic ? desc.mass : 0.0;

@@ -13,6 +13,7 @@
 
 #include <memory>
 #include <span>
+#include <vector>
 
 namespace tandem::bullet {
 
@@ -22,6 +23,9 @@ class SolverHooks {
   virtual void afterSetup() = 0;                 // solver bodies exist: warm start Tandem's rows
   virtual void afterIteration(int iteration) = 0;  // one of Bullet's iterations is done
 };
+
+// The face planes (n, d with n·x = d, n outward) of the convex hull of `points`.
+std::vector<Eigen::Vector4d> convexHullPlanes(const std::vector<Vec3>& points);
 
 class BulletWorld {
  public:

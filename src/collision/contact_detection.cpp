@@ -26,7 +26,13 @@ double boundingRadius(const RigidShape& shape) {
     case ShapeType::Sphere: return shape.radius;
     case ShapeType::Capsule: return shape.radius + shape.halfHeight;
     case ShapeType::Cylinder: return std::hypot(shape.radius, shape.halfHeight);
-    case ShapeType::Plane: return INFINITY;
+    case ShapeType::ConvexHull: {
+      double radius = 0.0;
+      for (const Vec3& p : shape.points) radius = std::max(radius, p.norm());
+      return radius;
+    }
+    case ShapeType::Plane:
+    case ShapeType::TriangleMesh: return INFINITY;
   }
   return INFINITY;
 }
@@ -35,6 +41,7 @@ double boundingRadius(const RigidShape& shape) {
 // cylinder rims (sampled), in the shape's frame.
 std::vector<Vec3> pokingPoints(const RigidShape& shape) {
   std::vector<Vec3> points;
+  if (shape.type == ShapeType::ConvexHull) return shape.points;
   if (shape.type == ShapeType::Box) {
     for (int corner = 0; corner < 8; ++corner)
       points.push_back(shape.halfExtents.cwiseProduct(
@@ -82,7 +89,7 @@ struct Detector {
 
   void nodesAgainstRigid(const CollisionSurface& surface, int32_t body) {
     const CollisionRigid& shape = rigid[body];
-    const double reach = boundingRadius(shape.shape) + surface.thickness;
+    const double reach = boundingRadius(shape.shape->shape) + surface.thickness;
     const Mat3 rotation = shape.orientation.toRotationMatrix();
     for (int32_t n : surface.nodes) {
       if (anchored.count(nodeBodyKey(n, body))) continue;
@@ -90,7 +97,8 @@ struct Detector {
       const Vec3 rigidVelocity = shape.linearVelocity + shape.angularVelocity.cross(x - shape.position);
       const double margin = closing(nodes.velocity[n], rigidVelocity) + surface.thickness;
       if ((x - shape.position).norm() > reach + margin) continue;
-      const geometry::ShapeDistance d = geometry::distanceToShape(shape.shape, rotation.transpose() * (x - shape.position));
+      const geometry::ShapeDistance d =
+          geometry::distanceToShape(*shape.shape, rotation.transpose() * (x - shape.position), surface.thickness + margin);
       const double gap = d.distance - surface.thickness;
       if (gap > margin) continue;
       addRigidContact(surface, {n, n, n}, {1, 0, 0}, 1, body, shape.position + rotation * d.surfacePoint,
@@ -125,7 +133,7 @@ struct Detector {
       if (normal.dot(onFace - shape.position) < 0) normal = -normal;
       gap = normal.dot(onFace - point) - surface.thickness;
       if ((onFace - point - normal.dot(onFace - point) * normal).norm() > 1e-9 * (b - a).norm()) return;  // off the face
-      if (gap < -4 * surface.thickness - boundingRadius(shape.shape)) return;  // far behind: not this face
+      if (gap < -4 * surface.thickness - boundingRadius(shape.shape->shape)) return;  // far behind: not this face
     }
     Vec3 faceVelocity = w[0] * nodes.velocity[face[0]] + w[1] * nodes.velocity[face[1]] + w[2] * nodes.velocity[face[2]];
     const Vec3 rigidPoint = point + radius * normal;
@@ -146,12 +154,15 @@ struct Detector {
 
   void facesAgainstRigid(const CollisionSurface& surface, int32_t body) {
     const CollisionRigid& shape = rigid[body];
-    if (shape.shape.type == ShapeType::Plane || surface.triangles.empty()) return;
+    const RigidShape& form = shape.shape->shape;
+    // A plane cannot reach between a face's nodes; a mesh's vertices are left out (meshes are
+    // scenery: terrain, bowls), its faces meet the cloth's nodes.
+    if (form.type == ShapeType::Plane || form.type == ShapeType::TriangleMesh || surface.triangles.empty()) return;
     const Mat3 rotation = shape.orientation.toRotationMatrix();
-    const double reach = boundingRadius(shape.shape) + surface.thickness;
+    const double reach = boundingRadius(form) + surface.thickness;
     std::vector<Vec3> points;
-    for (const Vec3& local : pokingPoints(shape.shape)) points.push_back(shape.position + rotation * local);
-    const Vec3 axis = rotation * Vec3(0, shape.shape.halfHeight, 0);
+    for (const Vec3& local : pokingPoints(form)) points.push_back(shape.position + rotation * local);
+    const Vec3 axis = rotation * Vec3(0, form.halfHeight, 0);
     for (const auto& face : surface.triangles) {
       if (anchored.count(nodeBodyKey(face[0], body)) || anchored.count(nodeBodyKey(face[1], body)) ||
           anchored.count(nodeBodyKey(face[2], body)))
@@ -161,12 +172,12 @@ struct Detector {
       const double size = std::max({(a - centre).norm(), (b - centre).norm(), (c - centre).norm()});
       const double margin = closing(nodes.velocity[face[0]], shape.linearVelocity) + size;
       if ((centre - shape.position).norm() > reach + margin) continue;
-      if (shape.shape.type == ShapeType::Sphere) {
-        pointAgainstFace(surface, face, body, shape.position, shape.shape.radius, 0);
-      } else if (shape.shape.type == ShapeType::Capsule) {
+      if (form.type == ShapeType::Sphere) {
+        pointAgainstFace(surface, face, body, shape.position, form.radius, 0);
+      } else if (form.type == ShapeType::Capsule) {
         const geometry::SegmentTriangle closest =
             geometry::closestSegmentTriangle(shape.position - axis, shape.position + axis, a, b, c);
-        pointAgainstFace(surface, face, body, shape.position - axis + 2 * closest.s * axis, shape.shape.radius, 0);
+        pointAgainstFace(surface, face, body, shape.position - axis + 2 * closest.s * axis, form.radius, 0);
       }
       for (size_t p = 0; p < points.size(); ++p)
         pointAgainstFace(surface, face, body, points[p], 0.0, static_cast<int32_t>(p) + 1);

@@ -18,6 +18,7 @@
 
 #include <tandem/world.h>
 
+#include "collision/geometry.h"
 #include "constraints/contact.h"
 #include "solver/solver_state.h"
 
@@ -40,7 +41,7 @@ struct CollisionSurface {
 };
 
 struct CollisionRigid {
-  RigidShape shape;
+  const geometry::CollisionShape* shape = nullptr;
   Vec3 position = Vec3::Zero();  // centre of mass
   Quat orientation = Quat::Identity();
   Vec3 linearVelocity = Vec3::Zero();

@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <vector>
 
 namespace tandem::geometry {
 
@@ -107,6 +109,94 @@ struct ShapeDistance {
   Vec3 surfacePoint;
 };
 
+inline ShapeDistance distanceToShape(const RigidShape& shape, const Vec3& q);
+
+// A static triangle mesh's triangles in a uniform grid (body frame), built once.
+struct TriangleGrid {
+  double cell = 1.0;
+  std::vector<std::pair<uint64_t, int32_t>> entries;  // (cell hash, triangle), sorted
+
+  Eigen::Vector3i cellOf(const Vec3& p) const {
+    return Eigen::Vector3i(static_cast<int>(std::floor(p.x() / cell)), static_cast<int>(std::floor(p.y() / cell)),
+                           static_cast<int>(std::floor(p.z() / cell)));
+  }
+  static uint64_t hash(const Eigen::Vector3i& c) {
+    return static_cast<uint64_t>(c.x()) * 73856093ull ^ static_cast<uint64_t>(c.y()) * 19349663ull ^
+           static_cast<uint64_t>(c.z()) * 83492791ull;
+  }
+  void build(const std::vector<Vec3>& vertices, const std::vector<std::array<int32_t, 3>>& triangles) {
+    double longest = 1e-3;
+    for (const auto& t : triangles)
+      for (int k = 0; k < 3; ++k) longest = std::max(longest, (vertices[t[(k + 1) % 3]] - vertices[t[k]]).norm());
+    cell = longest;
+    for (size_t i = 0; i < triangles.size(); ++i) {
+      const auto& t = triangles[i];
+      const Vec3 low = vertices[t[0]].cwiseMin(vertices[t[1]]).cwiseMin(vertices[t[2]]);
+      const Vec3 high = vertices[t[0]].cwiseMax(vertices[t[1]]).cwiseMax(vertices[t[2]]);
+      const Eigen::Vector3i from = cellOf(low), to = cellOf(high);
+      for (int x = from.x(); x <= to.x(); ++x)
+        for (int y = from.y(); y <= to.y(); ++y)
+          for (int z = from.z(); z <= to.z(); ++z) entries.emplace_back(hash({x, y, z}), static_cast<int32_t>(i));
+    }
+    std::sort(entries.begin(), entries.end());
+  }
+  // Every triangle in the cells within `reach` of p (possibly more than once).
+  template <class Visit>
+  void visit(const Vec3& p, double reach, Visit&& visitTriangle) const {
+    const Eigen::Vector3i from = cellOf(p - Vec3::Constant(reach)), to = cellOf(p + Vec3::Constant(reach));
+    for (int x = from.x(); x <= to.x(); ++x)
+      for (int y = from.y(); y <= to.y(); ++y)
+        for (int z = from.z(); z <= to.z(); ++z) {
+          const uint64_t key = hash({x, y, z});
+          for (auto it = std::lower_bound(entries.begin(), entries.end(), std::make_pair(key, INT32_MIN));
+               it != entries.end() && it->first == key; ++it)
+            visitTriangle(it->second);
+        }
+  }
+};
+
+// A rigid shape with what collision detection derives from it once: a convex hull's face
+// planes (n, d: n·x = d, n outward), a triangle mesh's grid.
+struct CollisionShape {
+  RigidShape shape;
+  std::vector<Eigen::Vector4d> planes;
+  TriangleGrid grid;
+};
+
+// `reach`: how far from a triangle mesh to look (other shapes are exact everywhere).
+inline ShapeDistance distanceToShape(const CollisionShape& collision, const Vec3& q, double reach) {
+  const RigidShape& shape = collision.shape;
+  if (shape.type == ShapeType::ConvexHull) {
+    // The deepest plane: exact inside and over faces; outside near an edge or a corner it is
+    // less than the true distance, which only makes contacts start a little early.
+    double distance = -INFINITY;
+    Vec3 normal = Vec3::UnitY();
+    for (const Eigen::Vector4d& plane : collision.planes) {
+      const double d = plane.head<3>().dot(q) - plane[3];
+      if (d > distance) {
+        distance = d;
+        normal = plane.head<3>();
+      }
+    }
+    return {distance, normal, q - distance * normal};
+  }
+  if (shape.type == ShapeType::TriangleMesh) {
+    ShapeDistance best{INFINITY, Vec3::UnitY(), q};
+    collision.grid.visit(q, reach, [&](int32_t i) {
+      const auto& t = shape.triangles[i];
+      const Vec3 &a = shape.points[t[0]], &b = shape.points[t[1]], &c = shape.points[t[2]];
+      const std::array<double, 3> w = closestOnTriangle(q, a, b, c);
+      const Vec3 onMesh = w[0] * a + w[1] * b + w[2] * c;
+      const double distance = (q - onMesh).norm();
+      if (distance >= best.distance) return;
+      const Vec3 normal = distance > 1e-12 ? Vec3((q - onMesh) / distance) : (b - a).cross(c - a).normalized();
+      best = {distance, normal, onMesh};
+    });
+    return best;
+  }
+  return distanceToShape(shape, q);
+}
+
 inline ShapeDistance distanceToShape(const RigidShape& shape, const Vec3& q) {
   switch (shape.type) {
     case ShapeType::Sphere: {
@@ -166,6 +256,8 @@ inline ShapeDistance distanceToShape(const RigidShape& shape, const Vec3& q) {
       const double distance = n.dot(q) - shape.planeOffset;
       return {distance, n, q - distance * n};
     }
+    case ShapeType::ConvexHull:
+    case ShapeType::TriangleMesh: break;  // need their CollisionShape
   }
   return {1e300, Vec3::UnitY(), q};
 }
