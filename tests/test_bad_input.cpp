@@ -97,7 +97,7 @@ TEST(BadInput, WorldRefusesBadBodiesAndConstraints) {
   body.shape = RigidShape::sphere(0);
   EXPECT_ERROR(world.addRigidBody(body), "sphere radius must be positive, got 0");
   body.shape = RigidShape::plane({0, 1, 0}, 0);
-  EXPECT_ERROR(world.addRigidBody(body), "a plane can only be static");
+  EXPECT_ERROR(world.addRigidBody(body), "a plane or a triangle mesh can only be static");
   body.shape = RigidShape::box({0.1, 0.1, 0.1});
   body.orientation = Quat(0, 0, 0, 0);
   EXPECT_ERROR(world.addRigidBody(body), "orientation must be a finite non-zero quaternion");
