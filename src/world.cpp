@@ -263,6 +263,7 @@ struct World::Impl final : bullet::SolverHooks {
   void prepareRows(double h) {
     if (directBlocksStale) buildDirectBlocks();
     bullet.loadRigidProperties(rigid);
+    for (RigidSolverState& body : rigid) body.impulse = body.angularImpulse = Vec3::Zero();
     rows.prepare(nodes, rigid, settings.gravity, h, settings.solver.baumgarte / h, settings.solver.contactSlop);
     for (DirectBlock& block : directBlocks) {
       block.addContacts(rows, settings.solver.contactSlop);

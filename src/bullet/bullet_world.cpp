@@ -284,8 +284,6 @@ void BulletWorld::loadRigidProperties(std::span<RigidSolverState> states) const 
     state.orientation = fromBt(body.getOrientation());
     state.linearVelocity = fromBt(body.getLinearVelocity());
     state.angularVelocity = fromBt(body.getAngularVelocity());
-    state.impulse.setZero();
-    state.angularImpulse.setZero();
   }
 }
 

@@ -47,8 +47,8 @@ class BulletWorld {
   void solve(double timeStep, int iterations, SolverHooks& hooks);
   void integrate(double timeStep);
 
-  // Pose, mass and world inertia of every body, and zeroed impulse totals. Static, kinematic
-  // and sleeping bodies load as immovable (zero inverse mass and inertia).
+  // Pose, mass and world inertia of every body. Static, kinematic and sleeping bodies load as
+  // immovable (zero inverse mass and inertia).
   void loadRigidProperties(std::span<RigidSolverState> states) const;
   // During the solve only: solver-body velocities in and out of Tandem's rigid state.
   void loadRigidVelocities(std::span<RigidSolverState> states) const;
