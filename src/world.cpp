@@ -314,25 +314,29 @@ struct World::Impl final : bullet::SolverHooks {
     directBlocksStale = false;
   }
 
-  // Bullet's islands do not know about anchors, so Tandem decides sleep for anchored bodies:
-  // an awake one does not fall asleep on its own (it keeps carrying, and reporting, its load);
-  // a sleeping one (put to sleep on purpose) is immovable to Tandem's rows and wakes when any
-  // node of a deformable anchored to it moves faster than the body's sleeping threshold.
-  void manageSleepOfAnchoredBodies() {
-    for (const AnchorRow& row : rows.anchors) {
-      if (!bullet.isDynamic(row.body)) continue;
-      if (bullet.isAwake(row.body)) {
-        bullet.restartSleepTimer(row.body);
-        continue;
+  // Bullet's islands know nothing of anchors and of Tandem's contacts, so Tandem decides sleep
+  // for bodies that deformables hold or carry (anchored, or pushed by a contact last step): an
+  // awake one does not fall asleep on its own (it keeps carrying, and reporting, its load); a
+  // sleeping one (put to sleep on purpose) is immovable to Tandem's rows and wakes when any node
+  // of such a deformable moves faster than the body's sleeping threshold.
+  void manageSleepOfHeldBodies() {
+    auto manage = [&](int32_t body, int32_t node) {
+      if (!bullet.isDynamic(body)) return;
+      if (bullet.isAwake(body)) {
+        bullet.restartSleepTimer(body);
+        return;
       }
-      const DeformableRecord& body = deformableOfNode(row.node[0]);
-      const double threshold = bullet.sleepingThreshold(row.body);
-      for (int32_t n = body.firstNode; n < body.firstNode + body.nodeCount; ++n)
+      const DeformableRecord& deformable = deformableOfNode(node);
+      const double threshold = bullet.sleepingThreshold(body);
+      for (int32_t n = deformable.firstNode; n < deformable.firstNode + deformable.nodeCount; ++n)
         if (nodes.velocity[n].squaredNorm() > threshold * threshold) {
-          bullet.wake(row.body);
-          break;
+          bullet.wake(body);
+          return;
         }
-    }
+    };
+    for (const AnchorRow& row : rows.anchors) manage(row.body, row.node[0]);
+    for (const ContactRow& row : rows.contacts)  // last step's
+      if (row.body >= 0 && row.lambdaNormal > 0) manage(row.body, row.node[0]);
   }
 
   const DeformableRecord& deformableOfNode(int32_t node) const {
@@ -391,6 +395,13 @@ struct World::Impl final : bullet::SolverHooks {
       const Vec3 push = (kFraction * excess / inverseMass) * row.normal;
       for (int k = 0; k < 4; ++k) nodes.position[row.node[k]] += row.coefficient[k] * nodes.inverseMass[row.node[k]] * push;
     }
+  }
+
+  // Post-stabilisation (Cline and Pai 2003): velocity-level rows leave a drift of order
+  // h² v² / L (a cloth corner whipping round at 60 rad/s stretches its edges by half in a step);
+  // each block projects its nodes back onto its rows with the step's own factorisation.
+  void projectDirectBlocks() {
+    for (DirectBlock& block : directBlocks) block.projectPositions(rows, nodes);
   }
 
   Status checkDiverged() const {
@@ -746,7 +757,7 @@ Status World::step(double h) {
 
   w.computeUnconstrainedVelocities(h);  // 1. deformable models: unconstrained node velocities
   timed(Stage::Models);
-  w.manageSleepOfAnchoredBodies();      // 2. Bullet: gravity and external forces on rigid bodies
+  w.manageSleepOfHeldBodies();          // 2. Bullet: gravity and external forces on rigid bodies
   w.bullet.predictRigidMotion(h);
   timed(Stage::RigidPrediction);
   w.bullet.detectCollisions(h);         // 3. Bullet: rigid-rigid contacts; Tandem: deformable ones
@@ -757,8 +768,9 @@ Status World::step(double h) {
   w.bullet.solve(h, w.settings.solver.iterations, w);  // 5+6. K × [Bullet iteration, Tandem sweep]
   timed(Stage::Solve);
   w.rememberContacts();
-  w.integrateNodes(h);                  // 7. symplectic Euler for nodes; Bullet for rigid bodies
-  w.bullet.integrate(h);
+  w.integrateNodes(h);                  // 7. symplectic Euler for nodes; Bullet for rigid bodies;
+  w.bullet.integrate(h);                //    then the direct blocks' rows projected back by position
+  w.projectDirectBlocks();
   timed(Stage::Integrate);
 
   report.bulletContactManifolds = w.bullet.manifoldCount();  // 8. report

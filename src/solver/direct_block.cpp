@@ -287,6 +287,39 @@ void DirectBlock::release(int32_t row) {
   m_entries[diagonal] = Eigen::Triplet<double>(m_entries[diagonal].row(), m_entries[diagonal].col(), -1.0);
 }
 
+void DirectBlock::projectPositions(const ConstraintRows& rows, NodeArrays& nodes) {
+  if (m_rows.empty() || !m_factorOk) return;
+  // The solve would move dynamic bodies too; until they can be moved by position as well,
+  // blocks holding one are left to the velocity-level correction.
+  if (std::any_of(m_bodyDof.begin(), m_bodyDof.end(), [](int32_t dof) { return dof >= 0; })) return;
+  const int32_t rowCount = scalarRowCount();
+  m_rhs.setZero(m_dofCount + rowCount);
+  for (int32_t r = 0; r < rowCount; ++r) {
+    if (!m_active[r] || m_released[r]) continue;
+    const BlockRowRef& ref = m_rows[r];
+    if (ref.type == RowType::FixedPoint) {
+      const FixedPointRow& row = rows.fixedPoints[ref.index];
+      m_rhs[m_dofCount + r] = -fixedPointError(nodes.position[row.node], row.target)[ref.component];
+    } else if (ref.type == RowType::Inextensibility) {
+      const InextensibilityRow& row = rows.inextensibility[ref.index];
+      if (row.effectiveMass != 0.0)
+        m_rhs[m_dofCount + r] =
+            -inextensibilityError(nodes.position[row.node[0]], nodes.position[row.node[1]], row.restLength);
+    }
+  }
+  m_solution = m_factor->solve(m_rhs);
+  // Near a singular configuration (a taut flat sheet pinned at its corners) the linearised
+  // rows are nearly redundant and a small error asks for a large step: no node moves further
+  // than twice the largest error it is correcting.
+  const double largest = 2.0 * m_rhs.tail(rowCount).cwiseAbs().maxCoeff();
+  for (int32_t n = 0; n < m_nodeCount; ++n) {
+    if (m_nodeDof[n] < 0) continue;
+    Vec3 step = m_solution.segment<3>(m_nodeDof[n]);
+    if (step.norm() > largest) step *= largest / step.norm();
+    nodes.position[globalNode(n)] += step;
+  }
+}
+
 void DirectBlock::clearImpulses(ConstraintRows& rows) const {
   for (const BlockRowRef& ref : m_rows) {
     switch (ref.type) {

@@ -85,6 +85,11 @@ class DirectBlock {
   // Starts the block's rows from zero impulse for this step (after prepare has read λ).
   void clearImpulses(ConstraintRows& rows) const;
 
+  // After integration: moves the block's nodes by Δx solving [H Jᵀ; J −E] [Δx; −μ] = [0; −C(x)]
+  // with this step's factorisation (J from the start of the step), so that its fixed points and
+  // inextensible edges hold by position too; contact rows hold their points still.
+  void projectPositions(const ConstraintRows& rows, NodeArrays& nodes);
+
   // One exact solve of the block against the current velocities.
   void solve(ConstraintRows& rows, SolverContext& ctx, SweepStats& stats);
 
