@@ -5,7 +5,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(build-essential cmake ninja-build pkg-config
-          libbullet-dev libeigen3-dev libcli11-dev nlohmann-json3-dev
+          libbullet-dev libeigen3-dev libcli11-dev nlohmann-json3-dev libtinyobjloader-dev
           libgtest-dev libbenchmark-dev)
 
 missing=()

@@ -1,6 +1,7 @@
 #include <tandem/mesh.h>
 
 #include "format.h"
+#include "mesh_internal.h"
 
 #include <algorithm>
 #include <cmath>
@@ -59,6 +60,31 @@ void addUniqueEdges(DeformableMesh& mesh, const std::vector<std::array<int32_t, 
 }
 
 }  // namespace
+
+void addTetEdgesAndBoundary(DeformableMesh& mesh) {
+  // Edges of every tet; boundary faces are those used by exactly one tet, oriented outwards.
+  std::vector<std::array<int32_t, 2>> edges;
+  std::map<std::array<int32_t, 3>, std::pair<int, std::array<int32_t, 3>>> faces;
+  for (const auto& t : mesh.tetrahedra) {
+    for (int a = 0; a < 4; ++a)
+      for (int b = a + 1; b < 4; ++b) edges.push_back({t[a], t[b]});
+    // Faces opposite each vertex, wound so the normal points away from that vertex (the tet
+    // is positively oriented: (x1 − x0) · ((x2 − x0) × (x3 − x0)) > 0).
+    const std::array<std::array<int32_t, 3>, 4> tetFaces{
+        {{t[1], t[2], t[3]}, {t[0], t[3], t[2]}, {t[0], t[1], t[3]}, {t[0], t[2], t[1]}}};
+    for (const auto& f : tetFaces) {
+      std::array<int32_t, 3> key = f;
+      std::sort(key.begin(), key.end());
+      auto& entry = faces[key];
+      ++entry.first;
+      entry.second = f;
+    }
+  }
+  addUniqueEdges(mesh, edges);
+  if (!mesh.triangles.empty()) return;  // given (a TetGen .face file)
+  for (const auto& [key, entry] : faces)
+    if (entry.first == 1) mesh.triangles.push_back(entry.second);
+}
 
 Status validateMesh(const DeformableMesh& mesh) {
   const int32_t n = mesh.nodeCount();
@@ -196,28 +222,79 @@ Result<DeformableMesh> makeTetBox(const Vec3& minCorner, const Vec3& maxCorner, 
           mesh.tetrahedra.push_back(tet);
         }
       }
-  // Edges of every tet; boundary faces are those used by exactly one tet, oriented outwards.
-  std::vector<std::array<int32_t, 2>> edges;
-  std::map<std::array<int32_t, 3>, std::pair<int, std::array<int32_t, 3>>> faces;
-  for (const auto& t : mesh.tetrahedra) {
-    for (int a = 0; a < 4; ++a)
-      for (int b = a + 1; b < 4; ++b) edges.push_back({t[a], t[b]});
-    // Faces opposite each vertex, wound so the normal points away from that vertex (the tet
-    // is positively oriented: (x1 − x0) · ((x2 − x0) × (x3 − x0)) > 0).
-    const std::array<std::array<int32_t, 3>, 4> tetFaces{
-        {{t[1], t[2], t[3]}, {t[0], t[3], t[2]}, {t[0], t[1], t[3]}, {t[0], t[2], t[1]}}};
-    for (const auto& f : tetFaces) {
-      std::array<int32_t, 3> key = f;
-      std::sort(key.begin(), key.end());
-      auto& entry = faces[key];
-      ++entry.first;
-      entry.second = f;
-    }
-  }
-  addUniqueEdges(mesh, edges);
-  for (const auto& [key, entry] : faces)
-    if (entry.first == 1) mesh.triangles.push_back(entry.second);
+  addTetEdgesAndBoundary(mesh);
   spreadMass(mesh, totalMass);
+  return mesh;
+}
+
+Result<DeformableMesh> makeTetCylinder(const Vec3& baseCentre, double radius, double height, int rings, int sectors,
+                                       int layers, double totalMass) {
+  if (Status s = checkCounts(rings, 1, "rings", "tet cylinder"); !s) return Error{s.message()};
+  if (Status s = checkCounts(sectors, 3, "sectors", "tet cylinder"); !s) return Error{s.message()};
+  if (Status s = checkCounts(layers, 1, "layers", "tet cylinder"); !s) return Error{s.message()};
+  if (Status s = checkTotalMass(totalMass, "tet cylinder"); !s) return Error{s.message()};
+  if (Status s = checkPoint(baseCentre, "base centre", "tet cylinder"); !s) return Error{s.message()};
+  if (!(std::isfinite(radius) && radius > 0 && std::isfinite(height) && height > 0))
+    return Error{"tet cylinder: radius and height must be positive, got " + formatNumber(radius) + " and " +
+                 formatNumber(height)};
+  DeformableMesh mesh;
+  const int perLevel = 1 + rings * sectors;
+  auto centre = [&](int level) { return static_cast<int32_t>(level * perLevel); };
+  auto node = [&](int level, int ring, int sector) {  // ring 1..rings
+    return static_cast<int32_t>(level * perLevel + 1 + (ring - 1) * sectors + (sector % sectors));
+  };
+  for (int level = 0; level <= layers; ++level) {
+    const double y = height * level / layers;
+    mesh.positions.push_back(baseCentre + Vec3(0, y, 0));
+    for (int ring = 1; ring <= rings; ++ring)
+      for (int sector = 0; sector < sectors; ++sector) {
+        const double angle = 2 * 3.14159265358979323846 * sector / sectors, r = radius * ring / rings;
+        mesh.positions.push_back(baseCentre + Vec3(r * std::cos(angle), y, r * std::sin(angle)));
+      }
+  }
+  auto addTet = [&](std::array<int32_t, 4> tet) {
+    const auto& x = mesh.positions;
+    if ((x[tet[1]] - x[tet[0]]).dot((x[tet[2]] - x[tet[0]]).cross(x[tet[3]] - x[tet[0]])) < 0) std::swap(tet[2], tet[3]);
+    mesh.tetrahedra.push_back(tet);
+  };
+  for (int level = 0; level < layers; ++level)
+    for (int sector = 0; sector < sectors; ++sector) {
+      // Core prism (centre, ring 1 at this sector and the next): three tets whose face diagonals
+      // match its neighbours' (centre bottom to ring top; ring bottom to next-sector top).
+      const int32_t c0 = centre(level), c1 = centre(level + 1);
+      const int32_t a0 = node(level, 1, sector), a1 = node(level + 1, 1, sector);
+      const int32_t b0 = node(level, 1, sector + 1), b1 = node(level + 1, 1, sector + 1);
+      addTet({c0, a0, b0, b1});
+      addTet({c0, a0, b1, a1});
+      addTet({c0, a1, b1, c1});
+      // Outer cells: hexahedra in (ring, sector, level), six tets each along the diagonal from
+      // their lowest to their highest corner (Kuhn), which conforms between neighbours.
+      for (int ring = 1; ring < rings; ++ring) {
+        auto corner = [&](int dr, int ds, int dl) { return node(level + dl, ring + dr, sector + ds); };
+        const std::array<std::array<int, 3>, 6> orders{{{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}}};
+        for (const auto& order : orders) {
+          std::array<int, 3> at{0, 0, 0};
+          std::array<int32_t, 4> tet;
+          tet[0] = corner(0, 0, 0);
+          for (int k = 0; k < 3; ++k) {
+            at[order[k]] = 1;
+            tet[k + 1] = corner(at[0], at[1], at[2]);
+          }
+          addTet(tet);
+        }
+      }
+    }
+  addTetEdgesAndBoundary(mesh);
+  // Mass lumped by volume: a quarter of each tet's share to each of its nodes.
+  mesh.masses.assign(mesh.positions.size(), 0.0);
+  double volume = 0.0;
+  for (const auto& t : mesh.tetrahedra) {
+    const auto& x = mesh.positions;
+    const double v = (x[t[1]] - x[t[0]]).dot((x[t[2]] - x[t[0]]).cross(x[t[3]] - x[t[0]])) / 6.0;
+    volume += v;
+    for (int32_t n : t) mesh.masses[n] += v / 4.0;
+  }
+  for (double& m : mesh.masses) m *= totalMass / volume;
   return mesh;
 }
 

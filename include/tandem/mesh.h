@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace tandem {
@@ -44,6 +45,23 @@ Result<DeformableMesh> makeClothGrid(const Vec3& corner, const Vec3& sideU, cons
 // five tetrahedra each, with every tet edge and the boundary triangles.
 Result<DeformableMesh> makeTetBox(const Vec3& minCorner, const Vec3& maxCorner, int cellsX, int cellsY,
                                   int cellsZ, double totalMass);
+
+// A tetrahedral cylinder along +y from `baseCentre`: `rings` cells across the radius,
+// `sectors` around, `layers` along the axis; a central prism of each layer is split like the
+// outer ones, so every tet is well shaped. Boundary triangles and tet edges included.
+Result<DeformableMesh> makeTetCylinder(const Vec3& baseCentre, double radius, double height, int rings, int sectors,
+                                       int layers, double totalMass);
+
+// A TetGen mesh: `<base>.node` and `<base>.ele`, and `<base>.face` for the boundary when it
+// exists (else the boundary is found from the tets). Masses are lumped from `density` (kg/m³):
+// a quarter of each tet's mass to each of its nodes. Tets wound the other way round (TetGen's
+// own convention among them) are turned round; degenerate tets, and any problem in the files,
+// are errors naming the file and the line.
+Result<DeformableMesh> loadTetGen(const std::string& basePath, double density);
+
+// A surface mesh from a Wavefront OBJ file (polygons are triangulated); its edges are the
+// triangles' edges, `totalMass` lumped by area.
+Result<DeformableMesh> loadObj(const std::string& path, double totalMass);
 
 // For bending: each interior edge (i, j) shared by triangles (i, j, left) and (j, i, right).
 struct EdgeHinge {
