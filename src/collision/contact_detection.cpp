@@ -208,32 +208,13 @@ struct Detector {
         meets[a * count + b] = a == b ? surfaces[a].selfCollision : bounds[a].intersects(bounds[b]);
   }
 
-  // A sorted spatial hash: (cell, item) pairs for boxes padded by the largest pad.
-  struct Grid {
-    double cell = 1.0;
-    std::vector<std::pair<uint64_t, int32_t>> entries;
-    Eigen::Vector3i cellOf(const Vec3& p) const {
-      return Eigen::Vector3i(static_cast<int>(std::floor(p.x() / cell)), static_cast<int>(std::floor(p.y() / cell)),
-                             static_cast<int>(std::floor(p.z() / cell)));
-    }
-    static uint64_t hash(const Eigen::Vector3i& c) {
-      return static_cast<uint64_t>(c.x()) * 73856093ull ^ static_cast<uint64_t>(c.y()) * 19349663ull ^
-             static_cast<uint64_t>(c.z()) * 83492791ull;
-    }
-    void insert(const Vec3& low, const Vec3& high, int32_t item) {
-      const Eigen::Vector3i from = cellOf(low), to = cellOf(high);
-      for (int x = from.x(); x <= to.x(); ++x)
-        for (int y = from.y(); y <= to.y(); ++y)
-          for (int z = from.z(); z <= to.z(); ++z) entries.emplace_back(hash({x, y, z}), item);
-    }
-    template <class Visit>
-    void visit(const Vec3& p, Visit&& visitItem) const {
-      const uint64_t key = hash(cellOf(p));
-      for (auto it = std::lower_bound(entries.begin(), entries.end(), std::make_pair(key, INT32_MIN));
-           it != entries.end() && it->first == key; ++it)
-        visitItem(it->second);
-    }
-  };
+  // Whether any surface can touch the features (faces, edges) of surface s.
+  bool featuresNeeded(size_t s) const {
+    const size_t count = surfaces.size();
+    for (size_t a = 0; a < count; ++a)
+      if (meets[a * count + s]) return true;
+    return false;
+  }
 
   // Node against face, between surfaces and within one, over a spatial hash of the faces.
   void nodesAgainstFaces() {
@@ -243,12 +224,10 @@ struct Detector {
       std::array<int32_t, 3> node;
     };
     std::vector<Face> faces;
-    Grid grid;
+    geometry::SpatialHash grid;
     grid.cell = largestPad;
     for (size_t s = 0; s < count; ++s) {
-      bool needed = false;
-      for (size_t a = 0; a < count; ++a) needed |= meets[a * count + s] != 0;
-      if (!needed) continue;
+      if (!featuresNeeded(s)) continue;
       for (const auto& face : surfaces[s].triangles) {
         faces.push_back({static_cast<int32_t>(s), face});
         grid.cell = std::max(grid.cell, (nodes.position[face[1]] - nodes.position[face[0]]).norm());
@@ -264,13 +243,13 @@ struct Detector {
       }
       grid.insert(low - Vec3::Constant(largestPad), high + Vec3::Constant(largestPad), static_cast<int32_t>(f));
     }
-    std::sort(grid.entries.begin(), grid.entries.end());
+    grid.sort();
 
     for (size_t s = 0; s < count; ++s) {
       const CollisionSurface& surface = surfaces[s];
       for (int32_t n : surface.nodes) {
         const Vec3& x = nodes.position[n];
-        grid.visit(x, [&](int32_t f) {
+        grid.visit(x, 0.0, [&](int32_t f) {
           const Face& face = faces[f];
           const CollisionSurface& other = surfaces[face.surface];
           if (!meets[s * count + face.surface]) return;
@@ -308,12 +287,10 @@ struct Detector {
       std::array<int32_t, 2> node;
     };
     std::vector<Edge> edges;
-    Grid grid;
+    geometry::SpatialHash grid;
     grid.cell = largestPad;
     for (size_t s = 0; s < count; ++s) {
-      bool needed = false;
-      for (size_t a = 0; a < count; ++a) needed |= meets[a * count + s] != 0;
-      if (!needed) continue;
+      if (!featuresNeeded(s)) continue;
       for (const auto& edge : surfaces[s].edges) {
         edges.push_back({static_cast<int32_t>(s), edge});
         grid.cell = std::max(grid.cell, (nodes.position[edge[1]] - nodes.position[edge[0]]).norm());
@@ -325,12 +302,12 @@ struct Detector {
       grid.insert(a.cwiseMin(b) - Vec3::Constant(largestPad), a.cwiseMax(b) + Vec3::Constant(largestPad),
                   static_cast<int32_t>(e));
     }
-    std::sort(grid.entries.begin(), grid.entries.end());
+    grid.sort();
     std::unordered_set<uint64_t> seen;
     for (size_t e = 0; e < edges.size(); ++e) {
       const Edge& first = edges[e];
       const Vec3 &p0 = nodes.position[first.node[0]], &p1 = nodes.position[first.node[1]];
-      grid.visit(0.5 * (p0 + p1), [&](int32_t f) {
+      grid.visit(0.5 * (p0 + p1), 0.0, [&](int32_t f) {
         if (f <= static_cast<int32_t>(e)) return;  // each pair once
         const Edge& second = edges[f];
         if (!meets[first.surface * count + second.surface] && !meets[second.surface * count + first.surface]) return;

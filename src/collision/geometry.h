@@ -111,10 +111,10 @@ struct ShapeDistance {
 
 inline ShapeDistance distanceToShape(const RigidShape& shape, const Vec3& q);
 
-// A static triangle mesh's triangles in a uniform grid (body frame), built once.
-struct TriangleGrid {
+// A sorted spatial hash: items inserted into every cell their box covers, looked up by point.
+struct SpatialHash {
   double cell = 1.0;
-  std::vector<std::pair<uint64_t, int32_t>> entries;  // (cell hash, triangle), sorted
+  std::vector<std::pair<uint64_t, int32_t>> entries;  // (cell hash, item), sorted once filled
 
   Eigen::Vector3i cellOf(const Vec3& p) const {
     return Eigen::Vector3i(static_cast<int>(std::floor(p.x() / cell)), static_cast<int>(std::floor(p.y() / cell)),
@@ -124,25 +124,16 @@ struct TriangleGrid {
     return static_cast<uint64_t>(c.x()) * 73856093ull ^ static_cast<uint64_t>(c.y()) * 19349663ull ^
            static_cast<uint64_t>(c.z()) * 83492791ull;
   }
-  void build(const std::vector<Vec3>& vertices, const std::vector<std::array<int32_t, 3>>& triangles) {
-    double longest = 1e-3;
-    for (const auto& t : triangles)
-      for (int k = 0; k < 3; ++k) longest = std::max(longest, (vertices[t[(k + 1) % 3]] - vertices[t[k]]).norm());
-    cell = longest;
-    for (size_t i = 0; i < triangles.size(); ++i) {
-      const auto& t = triangles[i];
-      const Vec3 low = vertices[t[0]].cwiseMin(vertices[t[1]]).cwiseMin(vertices[t[2]]);
-      const Vec3 high = vertices[t[0]].cwiseMax(vertices[t[1]]).cwiseMax(vertices[t[2]]);
-      const Eigen::Vector3i from = cellOf(low), to = cellOf(high);
-      for (int x = from.x(); x <= to.x(); ++x)
-        for (int y = from.y(); y <= to.y(); ++y)
-          for (int z = from.z(); z <= to.z(); ++z) entries.emplace_back(hash({x, y, z}), static_cast<int32_t>(i));
-    }
-    std::sort(entries.begin(), entries.end());
+  void insert(const Vec3& low, const Vec3& high, int32_t item) {
+    const Eigen::Vector3i from = cellOf(low), to = cellOf(high);
+    for (int x = from.x(); x <= to.x(); ++x)
+      for (int y = from.y(); y <= to.y(); ++y)
+        for (int z = from.z(); z <= to.z(); ++z) entries.emplace_back(hash({x, y, z}), item);
   }
-  // Every triangle in the cells within `reach` of p (possibly more than once).
+  void sort() { std::sort(entries.begin(), entries.end()); }
+  // Every item in the cells within `reach` of p (an item may come more than once).
   template <class Visit>
-  void visit(const Vec3& p, double reach, Visit&& visitTriangle) const {
+  void visit(const Vec3& p, double reach, Visit&& visitItem) const {
     const Eigen::Vector3i from = cellOf(p - Vec3::Constant(reach)), to = cellOf(p + Vec3::Constant(reach));
     for (int x = from.x(); x <= to.x(); ++x)
       for (int y = from.y(); y <= to.y(); ++y)
@@ -150,8 +141,24 @@ struct TriangleGrid {
           const uint64_t key = hash({x, y, z});
           for (auto it = std::lower_bound(entries.begin(), entries.end(), std::make_pair(key, INT32_MIN));
                it != entries.end() && it->first == key; ++it)
-            visitTriangle(it->second);
+            visitItem(it->second);
         }
+  }
+};
+
+// A static triangle mesh's triangles in a spatial hash (body frame), built once.
+struct TriangleGrid : SpatialHash {
+  void build(const std::vector<Vec3>& vertices, const std::vector<std::array<int32_t, 3>>& triangles) {
+    double longest = 1e-3;
+    for (const auto& t : triangles)
+      for (int k = 0; k < 3; ++k) longest = std::max(longest, (vertices[t[(k + 1) % 3]] - vertices[t[k]]).norm());
+    cell = longest;
+    for (size_t i = 0; i < triangles.size(); ++i) {
+      const auto& t = triangles[i];
+      insert(vertices[t[0]].cwiseMin(vertices[t[1]]).cwiseMin(vertices[t[2]]),
+             vertices[t[0]].cwiseMax(vertices[t[1]]).cwiseMax(vertices[t[2]]), static_cast<int32_t>(i));
+    }
+    sort();
   }
 };
 

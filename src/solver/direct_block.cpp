@@ -187,6 +187,14 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
       }
       inverseMassSum += inverseMass * j.squaredNorm();
     };
+    // The rigid entry of a row along `axis` at `offset`: −axis linear, axis × offset angular.
+    auto addRigid = [&](int32_t body, const Vec3& axis, const Vec3& offset) {
+      const int32_t dof = bodyDof(body);
+      add(dof, -axis, rigid[body].inverseMass);
+      const Vec3 angular = axis.cross(offset);
+      if (dof >= 0) add(dof + 3, angular, 0.0);
+      inverseMassSum += angular.dot(rigid[body].inverseInertia * angular);
+    };
     const BlockRowRef& ref = m_rows[r];
     switch (ref.type) {
       case RowType::FixedPoint: {
@@ -200,12 +208,7 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
         const Vec3 axis = Vec3::Unit(ref.component);
         for (int k = 0; k < 4; ++k)
           if (row.weight[k] != 0.0) add(nodeDof(row.node[k]), row.weight[k] * axis, nodes.inverseMass[row.node[k]]);
-        const RigidSolverState& body = rigid[row.body];
-        const int32_t dof = bodyDof(row.body);
-        add(dof, -axis, body.inverseMass);
-        const Vec3 angular = axis.cross(row.offset);
-        if (dof >= 0) add(dof + 3, angular, 0.0);
-        inverseMassSum += angular.dot(body.inverseInertia * angular);
+        addRigid(row.body, axis, row.offset);
         m_bias[r] = row.bias[ref.component];
         break;
       }
@@ -215,14 +218,7 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
         for (int k = 0; k < 4; ++k)
           if (row.coefficient[k] != 0.0)
             add(nodeDof(row.node[k]), row.coefficient[k] * axis, nodes.inverseMass[row.node[k]]);
-        if (row.body >= 0) {
-          const RigidSolverState& body = rigid[row.body];
-          const int32_t dof = bodyDof(row.body);
-          add(dof, -axis, body.inverseMass);
-          const Vec3 angular = axis.cross(row.offset);
-          if (dof >= 0) add(dof + 3, angular, 0.0);
-          inverseMassSum += angular.dot(body.inverseInertia * angular);
-        }
+        if (row.body >= 0) addRigid(row.body, axis, row.offset);
         m_bias[r] = row.bias;
         break;
       }
