@@ -1,0 +1,334 @@
+// Building a world: validating and adding rigid bodies, joints, deformables and constraints.
+#include "world_impl.h"
+
+#include <set>
+
+namespace tandem {
+namespace {
+
+Status validateSettings(const WorldSettings& settings) {
+  if (!settings.gravity.allFinite()) return Error{"settings: gravity must be finite"};
+  if (settings.solver.iterations < 1 || settings.solver.iterations > 1000)
+    return Error{"settings: solver iterations must be in [1, 1000], got " + std::to_string(settings.solver.iterations)};
+  if (!(settings.solver.baumgarte >= 0 && settings.solver.baumgarte <= 1))
+    return Error{"settings: baumgarte (β·h) must be in [0, 1], got " + formatNumber(settings.solver.baumgarte)};
+  if (!(settings.solver.contactSlop >= 0 && std::isfinite(settings.solver.contactSlop)))
+    return Error{"settings: contact slop must be >= 0 m, got " + formatNumber(settings.solver.contactSlop)};
+  if (!(settings.divergenceSpeed > 0))
+    return Error{"settings: divergence speed must be positive, got " + formatNumber(settings.divergenceSpeed)};
+  return {};
+}
+
+Status validateShape(const RigidShape& s, const std::string& who) {
+  auto positiveFinite = [](double v) { return std::isfinite(v) && v > 0; };
+  switch (s.type) {
+    case ShapeType::Box:
+      if (!s.halfExtents.allFinite() || s.halfExtents.minCoeff() <= 0)
+        return Error{who + ": box half extents must be positive and finite"};
+      break;
+    case ShapeType::Sphere:
+      if (!positiveFinite(s.radius)) return Error{who + ": sphere radius must be positive, got " + formatNumber(s.radius)};
+      break;
+    case ShapeType::Cylinder:
+    case ShapeType::Capsule:
+      if (!positiveFinite(s.radius) || !positiveFinite(s.halfHeight))
+        return Error{who + ": radius and half height must be positive, got " + formatNumber(s.radius) + " and " +
+                     formatNumber(s.halfHeight)};
+      break;
+    case ShapeType::Plane:
+      if (!s.planeNormal.allFinite() || s.planeNormal.norm() < 1e-9 || !std::isfinite(s.planeOffset))
+        return Error{who + ": plane normal must be a finite non-zero vector and the offset finite"};
+      break;
+    case ShapeType::ConvexHull: {
+      if (s.points.size() < 4) return Error{who + ": a convex hull needs at least 4 points"};
+      for (size_t i = 0; i < s.points.size(); ++i)
+        if (!s.points[i].allFinite()) return Error{who + ": convex hull point " + std::to_string(i) + " is not finite"};
+      bool solid = false;  // some four points span a volume
+      for (size_t i = 2; i < s.points.size() && !solid; ++i)
+        for (size_t j = i + 1; j < s.points.size() && !solid; ++j)
+          solid = std::abs((s.points[1] - s.points[0]).dot((s.points[i] - s.points[0]).cross(s.points[j] - s.points[0]))) > 1e-12;
+      if (!solid) return Error{who + ": the convex hull's points are flat (no volume)"};
+      break;
+    }
+    case ShapeType::TriangleMesh: {
+      if (s.triangles.empty()) return Error{who + ": a triangle mesh needs at least one triangle"};
+      DeformableMesh mesh;  // reuse the mesh checks: indices, finiteness, degenerate triangles
+      mesh.positions = s.points;
+      mesh.masses.assign(s.points.size(), 1.0);
+      mesh.triangles = s.triangles;
+      if (Status status = validateMesh(mesh); !status) return Error{who + ": triangle mesh: " + status.message()};
+      break;
+    }
+  }
+  return {};
+}
+
+}  // namespace
+
+RigidShape RigidShape::box(const Vec3& halfExtents) {
+  RigidShape s;
+  s.type = ShapeType::Box;
+  s.halfExtents = halfExtents;
+  return s;
+}
+RigidShape RigidShape::sphere(double radius) {
+  RigidShape s;
+  s.type = ShapeType::Sphere;
+  s.radius = radius;
+  return s;
+}
+RigidShape RigidShape::cylinder(double radius, double halfHeight) {
+  RigidShape s;
+  s.type = ShapeType::Cylinder;
+  s.radius = radius;
+  s.halfHeight = halfHeight;
+  return s;
+}
+RigidShape RigidShape::capsule(double radius, double halfHeight) {
+  RigidShape s = cylinder(radius, halfHeight);
+  s.type = ShapeType::Capsule;
+  return s;
+}
+RigidShape RigidShape::plane(const Vec3& normal, double offset) {
+  RigidShape s;
+  s.type = ShapeType::Plane;
+  s.planeNormal = normal;
+  s.planeOffset = offset;
+  return s;
+}
+
+RigidShape RigidShape::convexHull(std::vector<Vec3> points) {
+  RigidShape s;
+  s.type = ShapeType::ConvexHull;
+  s.points = std::move(points);
+  return s;
+}
+RigidShape RigidShape::triangleMesh(std::vector<Vec3> vertices, std::vector<std::array<int32_t, 3>> triangles) {
+  RigidShape s;
+  s.type = ShapeType::TriangleMesh;
+  s.points = std::move(vertices);
+  s.triangles = std::move(triangles);
+  return s;
+}
+
+AnchorDesc AnchorDesc::node(DeformableId deformable, int32_t node, RigidBodyId body) {
+  AnchorDesc desc;
+  desc.deformable = deformable;
+  desc.nodes = {node, -1, -1, -1};
+  desc.weights = {1.0, 0.0, 0.0, 0.0};
+  desc.nodeCount = 1;
+  desc.body = body;
+  return desc;
+}
+
+Status World::setSettings(const WorldSettings& settings) {
+  if (Status s = validateSettings(settings); !s) return s;
+  m_impl->settings = settings;
+  m_impl->bullet.setGravity(settings.gravity);
+  return {};
+}
+Result<RigidBodyId> World::addRigidBody(const RigidBodyDesc& desc) {
+  const std::string who = "rigid body '" + desc.name + "'";
+  if (Status s = validateShape(desc.shape, who); !s) return Error{s.message()};
+  if (desc.motion == MotionType::Dynamic && !(std::isfinite(desc.mass) && desc.mass > 0))
+    return Error{who + ": mass must be positive and finite for a dynamic body, got " + formatNumber(desc.mass) + " kg"};
+  if ((desc.shape.type == ShapeType::Plane || desc.shape.type == ShapeType::TriangleMesh) &&
+      desc.motion != MotionType::Static)
+    return Error{who + ": a plane or a triangle mesh can only be static"};
+  if (!desc.position.allFinite()) return Error{who + ": position is not finite"};
+  if (!desc.orientation.coeffs().allFinite() || desc.orientation.norm() < 1e-9)
+    return Error{who + ": orientation must be a finite non-zero quaternion"};
+  if (!desc.linearVelocity.allFinite() || !desc.angularVelocity.allFinite())
+    return Error{who + ": velocity is not finite"};
+  if (!(desc.friction >= 0 && std::isfinite(desc.friction)))
+    return Error{who + ": friction must be >= 0, got " + formatNumber(desc.friction)};
+  if (!(desc.restitution >= 0 && desc.restitution <= 1))
+    return Error{who + ": restitution must be in [0, 1], got " + formatNumber(desc.restitution)};
+  const int index = m_impl->bullet.addRigidBody(desc);
+  m_impl->rigidNames.push_back(desc.name);
+  m_impl->rigidFriction.push_back(desc.friction);
+  auto shape = std::make_unique<geometry::CollisionShape>();
+  shape->shape = desc.shape;
+  if (desc.shape.type == ShapeType::ConvexHull) shape->planes = bullet::convexHullPlanes(desc.shape.points);
+  if (desc.shape.type == ShapeType::TriangleMesh) shape->grid.build(desc.shape.points, desc.shape.triangles);
+  m_impl->rigidShapes.push_back(std::move(shape));
+  m_impl->rigid.emplace_back();
+  return RigidBodyId{index};
+}
+
+Result<JointId> World::addHinge(const HingeDesc& desc) {
+  if (!m_impl->validRigid(desc.bodyA)) return Error{"hinge: body A does not exist"};
+  if (desc.bodyB && !m_impl->validRigid(*desc.bodyB)) return Error{"hinge: body B does not exist"};
+  if (desc.bodyB && *desc.bodyB == desc.bodyA) return Error{"hinge: body A and body B are the same body"};
+  if (!desc.pivot.allFinite()) return Error{"hinge: pivot is not finite"};
+  if (!desc.axis.allFinite() || desc.axis.norm() < 1e-9) return Error{"hinge: axis must be a finite non-zero vector"};
+  return JointId{m_impl->bullet.addHinge(desc)};
+}
+
+void World::putRigidToSleep(RigidBodyId body) { m_impl->bullet.putToSleep(body.index); }
+void World::setRigidCanSleep(RigidBodyId body, bool canSleep) { m_impl->bullet.setCanSleep(body.index, canSleep); }
+
+Status World::setKinematicTarget(RigidBodyId body, const Vec3& position, const Quat& orientation) {
+  if (!m_impl->validRigid(body)) return Error{"kinematic target: no rigid body with index " + std::to_string(body.index)};
+  if (!position.allFinite() || !orientation.coeffs().allFinite() || orientation.norm() < 1e-9)
+    return Error{"kinematic target: pose is not finite"};
+  m_impl->bullet.setKinematicTarget(body.index, position, orientation);
+  return {};
+}
+
+Result<DeformableId> World::addDeformable(const DeformableDesc& desc) {
+  const std::string who = "deformable '" + desc.name + "'";
+  if (Status s = validateMesh(desc.mesh); !s) return Error{who + ": " + s.message()};
+  const MassSpringSettings& springs = desc.springs;
+  if (!(springs.stiffness >= 0 && std::isfinite(springs.stiffness)) ||
+      !(springs.damping >= 0 && std::isfinite(springs.damping)))
+    return Error{who + ": spring stiffness and damping must be >= 0 and finite"};
+  if (desc.inextensibility.enabled && !isPositive(desc.inextensibility.maxForce))
+    return Error{who + ": inextensibility max force must be positive, got " + formatNumber(desc.inextensibility.maxForce)};
+  if (desc.bending.enabled && !isPositive(desc.bending.maxForce))
+    return Error{who + ": bending max force must be positive, got " + formatNumber(desc.bending.maxForce)};
+  if (desc.bending.enabled && (!isPositive(desc.bending.frequency) || !(desc.bending.dampingRatio >= 0)))
+    return Error{who + ": bending frequency must be positive and its damping ratio >= 0"};
+  if (!(std::isfinite(desc.damping) && desc.damping >= 0))
+    return Error{who + ": damping must be >= 0 per second and finite, got " + formatNumber(desc.damping)};
+  if (!(std::isfinite(desc.collision.thickness) && desc.collision.thickness >= 0))
+    return Error{who + ": collision thickness must be >= 0 m and finite, got " + formatNumber(desc.collision.thickness)};
+  if (!(std::isfinite(desc.collision.friction) && desc.collision.friction >= 0))
+    return Error{who + ": friction must be >= 0 and finite, got " + formatNumber(desc.collision.friction)};
+
+  Impl& w = *m_impl;
+  const DeformableMesh& mesh = desc.mesh;
+  const int32_t first = static_cast<int32_t>(w.nodes.size());
+  for (int32_t i = 0; i < mesh.nodeCount(); ++i) {
+    w.nodes.position.push_back(mesh.positions[i]);
+    w.nodes.velocity.push_back(Vec3::Zero());
+    w.nodes.force.push_back(Vec3::Zero());
+    w.nodes.inverseMass.push_back(1.0 / mesh.masses[i]);
+  }
+  auto addEdge = [&](const std::array<int32_t, 2>& e, bool inextensible) {
+    const double restLength = (mesh.positions[e[1]] - mesh.positions[e[0]]).norm();
+    if (springs.stiffness > 0 || springs.damping > 0)
+      w.springs.push_back({first + e[0], first + e[1], restLength, springs.stiffness, springs.damping});
+    if (!inextensible) return;
+    InextensibilityRow row;
+    row.node = {first + e[0], first + e[1]};
+    row.restLength = restLength;
+    const auto bounds = inextensibilityForceBounds(desc.inextensibility.mode, desc.inextensibility.maxForce);
+    row.lambdaMin = bounds[0];
+    row.lambdaMax = bounds[1];
+    w.rows.inextensibility.push_back(row);
+  };
+  for (const auto& e : mesh.edges) addEdge(e, desc.inextensibility.enabled);
+  for (const auto& e : mesh.shearEdges) addEdge(e, desc.inextensibility.enabled && desc.inextensibility.shearEdges);
+  if (desc.bending.enabled) {
+    for (const EdgeHinge& hinge : findEdgeHinges(mesh.triangles)) {
+      BendingRow row;
+      row.node = {first + hinge.i, first + hinge.j, first + hinge.left, first + hinge.right};
+      const auto& x = mesh.positions;
+      row.restDot = bendingDot(x[hinge.i], x[hinge.j], x[hinge.left], x[hinge.right]);
+      row.restEdgeLength = (x[hinge.j] - x[hinge.i]).norm();
+      row.maxForce = desc.bending.maxForce;
+      row.frequency = desc.bending.frequency;
+      row.dampingRatio = desc.bending.dampingRatio;
+      w.rows.bending.push_back(row);
+    }
+  }
+  DeformableRecord record{desc.name, first, mesh.nodeCount(), mesh, desc.rowSolver, desc.collision, desc.damping, {},
+                          {}, {}};
+  // The collision surface: its triangles, and the nodes on them (every node when it has none).
+  std::vector<bool> onSurface(mesh.nodeCount(), mesh.triangles.empty());
+  for (const auto& t : mesh.triangles) {
+    record.surfaceTriangles.push_back({first + t[0], first + t[1], first + t[2]});
+    for (int32_t n : t) onSurface[n] = true;
+  }
+  for (int32_t n = 0; n < mesh.nodeCount(); ++n)
+    if (onSurface[n]) record.surfaceNodes.push_back(first + n);
+  // Its edges: the triangles' (each once), or a rope's.
+  std::set<std::pair<int32_t, int32_t>> edges;
+  for (const auto& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) edges.insert({std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])});
+  if (mesh.triangles.empty())
+    for (const auto& e : mesh.edges) edges.insert({std::min(e[0], e[1]), std::max(e[0], e[1])});
+  for (const auto& [i, j] : edges) record.surfaceEdges.push_back({first + i, first + j});
+  w.deformables.push_back(std::move(record));
+  w.directBlocksStale = true;
+  return DeformableId{static_cast<int32_t>(w.deformables.size()) - 1};
+}
+
+Status World::setNodeVelocity(DeformableId body, int32_t node, const Vec3& velocity) {
+  Result<int32_t> n = m_impl->globalNode(body, node, "set node velocity");
+  if (!n) return n.status();
+  if (!velocity.allFinite()) return Error{"set node velocity: velocity is not finite"};
+  m_impl->nodes.velocity[*n] = velocity;
+  return {};
+}
+
+Status World::fixNode(DeformableId body, int32_t node) {
+  Result<int32_t> n = m_impl->globalNode(body, node, "fix node");
+  if (!n) return n.status();
+  m_impl->nodes.inverseMass[*n] = 0.0;
+  m_impl->nodes.velocity[*n].setZero();
+  return {};
+}
+
+// ---- Constraints ------------------------------------------------------------------------
+
+Result<FixedPointId> World::addFixedPoint(DeformableId body, int32_t node, const Vec3& target, double maxForce) {
+  Result<int32_t> n = m_impl->globalNode(body, node, "fixed point");
+  if (!n) return Error{n.message()};
+  if (!target.allFinite()) return Error{"fixed point: target is not finite"};
+  if (!isPositive(maxForce)) return Error{"fixed point: max force must be positive, got " + formatNumber(maxForce)};
+  FixedPointRow row;
+  row.node = *n;
+  row.target = row.previousTarget = target;
+  row.maxForce = maxForce;
+  m_impl->rows.fixedPoints.push_back(row);
+  m_impl->directBlocksStale = true;
+  return FixedPointId{static_cast<int32_t>(m_impl->rows.fixedPoints.size()) - 1};
+}
+
+Status World::setFixedPointTarget(FixedPointId id, const Vec3& target) {
+  if (id.index < 0 || id.index >= static_cast<int32_t>(m_impl->rows.fixedPoints.size()))
+    return Error{"fixed point target: no fixed point with index " + std::to_string(id.index)};
+  if (!target.allFinite()) return Error{"fixed point target: target is not finite"};
+  m_impl->rows.fixedPoints[id.index].target = target;
+  return {};
+}
+
+Result<AnchorId> World::addAnchor(const AnchorDesc& desc) {
+  Impl& w = *m_impl;
+  if (!w.validRigid(desc.body)) return Error{"anchor: no rigid body with index " + std::to_string(desc.body.index)};
+  if (desc.nodeCount < 1 || desc.nodeCount > 4)
+    return Error{"anchor: node count must be 1 to 4, got " + std::to_string(desc.nodeCount)};
+  if (!isPositive(desc.maxForce)) return Error{"anchor: max force must be positive, got " + formatNumber(desc.maxForce)};
+  AnchorRow row;
+  row.body = desc.body.index;
+  row.maxForce = desc.maxForce;
+  double weightSum = 0.0;
+  for (int k = 0; k < desc.nodeCount; ++k) {
+    Result<int32_t> n = w.globalNode(desc.deformable, desc.nodes[k], "anchor");
+    if (!n) return Error{n.message()};
+    if (!std::isfinite(desc.weights[k])) return Error{"anchor: weights must be finite"};
+    row.node[k] = *n;
+    row.weight[k] = desc.weights[k];
+    weightSum += desc.weights[k];
+  }
+  if (std::abs(weightSum - 1.0) > 1e-6) return Error{"anchor: weights must sum to 1, got " + formatNumber(weightSum)};
+  for (int k = desc.nodeCount; k < 4; ++k) {
+    row.node[k] = row.node[0];
+    row.weight[k] = 0.0;
+  }
+  const Vec3 com = w.bullet.position(row.body);
+  const Quat orientation = w.bullet.orientation(row.body);
+  if (desc.localPoint) {
+    if (!desc.localPoint->allFinite()) return Error{"anchor: local point is not finite"};
+    row.localPoint = *desc.localPoint;
+  } else {
+    row.localPoint = orientation.conjugate() * (row.deformablePoint(w.nodes.position) - com);
+  }
+  w.rows.anchors.push_back(row);
+  w.directBlocksStale = true;
+  return AnchorId{static_cast<int32_t>(w.rows.anchors.size()) - 1};
+}
+
+}  // namespace tandem

@@ -1,0 +1,329 @@
+// World::Impl: the world's state and the stages of its step (src/world.cpp runs them,
+// src/world_build.cpp fills the state). Internal.
+#pragma once
+
+#include <tandem/world.h>
+
+#include "bullet/bullet_world.h"
+#include "collision/contact_detection.h"
+#include "format.h"
+#include "models/mass_spring.h"
+#include "solver/constraint_rows.h"
+#include "solver/direct_block.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+#include <unordered_map>
+#include <unordered_set>
+
+namespace tandem {
+
+inline bool isPositive(double value) { return value > 0 && !std::isnan(value); }  // +inf allowed
+
+// Passes over the contacts no direct block holds, after the blocks, in each iteration.
+inline constexpr int kFreeContactPasses = 4;
+
+struct DeformableRecord {
+  std::string name;
+  int32_t firstNode = 0;
+  int32_t nodeCount = 0;
+  DeformableMesh restMesh;
+  RowSolverKind rowSolver = RowSolverKind::Auto;
+  CollisionSettings collision;
+  double damping = 0.0;
+  std::vector<int32_t> surfaceNodes;                       // global indices
+  std::vector<std::array<int32_t, 3>> surfaceTriangles;    // global indices
+  std::vector<std::array<int32_t, 2>> surfaceEdges;        // global indices
+};
+
+class StageClock {
+ public:
+  double lap() {
+    const auto now = std::chrono::steady_clock::now();
+    const double seconds = std::chrono::duration<double>(now - m_last).count();
+    m_last = now;
+    return seconds;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point m_last = std::chrono::steady_clock::now();
+};
+
+struct World::Impl final : bullet::SolverHooks {
+  WorldSettings settings;
+  bullet::BulletWorld bullet;
+  std::vector<std::string> rigidNames;
+  std::vector<double> rigidFriction;  // for Tandem's collision detection
+  std::vector<std::unique_ptr<geometry::CollisionShape>> rigidShapes;  // shapes with derived data
+  std::vector<RigidSolverState> rigid;
+
+  NodeArrays nodes;
+  std::vector<DeformableRecord> deformables;
+  std::vector<EdgeSpring> springs;
+  ConstraintRows rows;
+  std::vector<DirectBlock> directBlocks;
+  bool directBlocksStale = true;  // rows were added since the blocks were built
+  struct ContactImpulse {
+    double normal;
+    Vec3 friction;
+  };
+  std::unordered_map<uint64_t, ContactImpulse> previousContacts;  // by feature, for warm starting
+
+  StepReport report;
+  double time = 0.0;
+  int64_t steps = 0;
+  double timeStep = 0.0;  // of the step in progress
+
+  explicit Impl(const WorldSettings& s) : settings(s), bullet(s.gravity) {}
+
+  SolverContext context() {
+    return {nodes.velocity, nodes.inverseMass, rigid, timeStep, settings.solver.baumgarte / timeStep};
+  }
+
+  // ---- Stage 1: models -----------------------------------------------------------------
+  // Unconstrained node velocities: v* = v + h m⁻¹ (f_internal + f_external), gravity included.
+  void computeUnconstrainedVelocities(double h) {
+    for (Vec3& f : nodes.force) f.setZero();
+    addSpringForces(springs, nodes);
+    for (size_t i = 0; i < nodes.size(); ++i) {
+      if (nodes.inverseMass[i] == 0.0) continue;
+      nodes.velocity[i] += h * (settings.gravity + nodes.inverseMass[i] * nodes.force[i]);
+    }
+    for (const DeformableRecord& body : deformables) dampInternalMotion(body, h);
+  }
+
+  // v ← v − min(c h, 1) (v − v̄), v̄ the body's mass-weighted mean velocity over its free nodes.
+  void dampInternalMotion(const DeformableRecord& body, double h) {
+    if (body.damping == 0.0) return;
+    Vec3 momentum = Vec3::Zero();
+    double mass = 0.0;
+    for (int32_t n = body.firstNode; n < body.firstNode + body.nodeCount; ++n)
+      if (nodes.inverseMass[n] > 0) {
+        momentum += nodes.velocity[n] / nodes.inverseMass[n];
+        mass += 1.0 / nodes.inverseMass[n];
+      }
+    if (mass == 0.0) return;
+    const Vec3 mean = momentum / mass;
+    const double fraction = std::min(body.damping * h, 1.0);
+    for (int32_t n = body.firstNode; n < body.firstNode + body.nodeCount; ++n)
+      if (nodes.inverseMass[n] > 0) nodes.velocity[n] -= fraction * (nodes.velocity[n] - mean);
+  }
+
+  // ---- Stage 3: deformable contacts ---------------------------------------------------------
+  void detectDeformableContacts(double h) {
+    std::vector<CollisionSurface> surfaces;
+    for (const DeformableRecord& body : deformables) {
+      if (!body.collision.enabled) continue;
+      surfaces.push_back({body.firstNode, body.nodeCount, body.surfaceNodes, body.surfaceTriangles,
+                          body.surfaceEdges, body.restMesh.positions, body.collision.thickness,
+                          body.collision.friction, body.collision.selfCollision});
+    }
+    std::vector<CollisionRigid> shapes(bullet.rigidBodyCount());
+    for (int b = 0; b < bullet.rigidBodyCount(); ++b)
+      shapes[b] = {rigidShapes[b].get(),        bullet.position(b),        bullet.orientation(b),
+                   bullet.linearVelocity(b),    bullet.angularVelocity(b), rigidFriction[b],
+                   bullet.mass(b)};
+    std::unordered_set<uint64_t> anchored;
+    for (const AnchorRow& row : rows.anchors)
+      for (int k = 0; k < 4; ++k)
+        if (row.weight[k] != 0.0) anchored.insert(nodeBodyKey(row.node[k], row.body));
+    rows.contacts.clear();
+    detectContacts(surfaces, nodes, shapes, anchored, h, rows.contacts);
+    // Warm start from last step's impulse on the same feature, friction kept in the new plane.
+    for (ContactRow& row : rows.contacts) {
+      auto previous = previousContacts.find(row.key);
+      if (previous == previousContacts.end()) continue;
+      row.lambdaNormal = previous->second.normal;
+      row.warmFriction = previous->second.friction;
+    }
+  }
+
+  void rememberContacts() {
+    previousContacts.clear();
+    for (const ContactRow& row : rows.contacts)
+      previousContacts[row.key] = {row.lambdaNormal, row.impulse() - row.lambdaNormal * row.normal};
+  }
+
+  // ---- Stage 4: rows ---------------------------------------------------------------------
+  void prepareRows(double h) {
+    if (directBlocksStale) buildDirectBlocks();
+    bullet.loadRigidProperties(rigid);
+    for (RigidSolverState& body : rigid) body.impulse = body.angularImpulse = Vec3::Zero();
+    rows.prepare(nodes, rigid, settings.gravity, h, settings.solver.baumgarte / h, settings.solver.contactSlop);
+    for (DirectBlock& block : directBlocks) {
+      block.addContacts(rows, settings.solver.contactSlop);
+      block.prepare(rows, nodes, rigid, h);
+    }
+    report.rowCounts = rows.countRows();
+  }
+
+  // One block per group of deformables tied together through dynamic rigid bodies by anchors
+  // (union-find over deformables), so that a body shared by several of them is solved with
+  // all of them at once.
+  void buildDirectBlocks() {
+    directBlocks.clear();
+    std::vector<int32_t> group(deformables.size());
+    for (size_t d = 0; d < group.size(); ++d) group[d] = static_cast<int32_t>(d);
+    auto root = [&](int32_t d) {
+      while (group[d] != d) d = group[d] = group[group[d]];
+      return d;
+    };
+    std::vector<int32_t> firstDeformableOnBody(bullet.rigidBodyCount(), -1);
+    for (const AnchorRow& row : rows.anchors) {
+      const auto deformable = static_cast<int32_t>(&deformableOfNode(row.node[0]) - deformables.data());
+      if (deformables[deformable].rowSolver == RowSolverKind::Iterative || !bullet.isDynamic(row.body)) continue;
+      int32_t& other = firstDeformableOnBody[row.body];
+      if (other < 0)
+        other = deformable;
+      else
+        group[root(deformable)] = root(other);
+    }
+    for (size_t d = 0; d < deformables.size(); ++d) {
+      if (root(static_cast<int32_t>(d)) != static_cast<int32_t>(d)) continue;
+      std::vector<DirectBlock::NodeRange> ranges;
+      bool forced = false, allowed = true;
+      for (size_t member = 0; member < deformables.size(); ++member) {
+        if (root(static_cast<int32_t>(member)) != static_cast<int32_t>(d)) continue;
+        const DeformableRecord& record = deformables[member];
+        forced |= record.rowSolver == RowSolverKind::Direct;
+        allowed &= record.rowSolver != RowSolverKind::Iterative;
+        ranges.push_back({record.firstNode, record.nodeCount});
+      }
+      if (!allowed) continue;
+      DirectBlock block(std::move(ranges));
+      block.collectRows(rows);
+      if (block.scalarRowCount() == 0 || (!forced && block.scalarRowCount() > kAutoDirectRowLimit)) continue;
+      block.claimRows(rows);
+      directBlocks.push_back(std::move(block));
+    }
+    directBlocksStale = false;
+  }
+
+  // Bullet's islands know nothing of anchors and of Tandem's contacts, so Tandem decides sleep
+  // for bodies that deformables hold or carry (anchored, or pushed by a contact last step): an
+  // awake one does not fall asleep on its own (it keeps carrying, and reporting, its load); a
+  // sleeping one (put to sleep on purpose) is immovable to Tandem's rows and wakes when any node
+  // of such a deformable moves faster than the body's sleeping threshold.
+  void manageSleepOfHeldBodies() {
+    auto manage = [&](int32_t body, int32_t node) {
+      if (!bullet.isDynamic(body)) return;
+      if (bullet.isAwake(body)) {
+        bullet.restartSleepTimer(body);
+        return;
+      }
+      const DeformableRecord& deformable = deformableOfNode(node);
+      const double threshold = bullet.sleepingThreshold(body);
+      for (int32_t n = deformable.firstNode; n < deformable.firstNode + deformable.nodeCount; ++n)
+        if (nodes.velocity[n].squaredNorm() > threshold * threshold) {
+          bullet.wake(body);
+          return;
+        }
+    };
+    for (const AnchorRow& row : rows.anchors) manage(row.body, row.node[0]);
+    for (const ContactRow& row : rows.contacts)  // last step's
+      if (row.body >= 0 && row.lambdaNormal > 0) manage(row.body, row.node[0]);
+  }
+
+  const DeformableRecord& deformableOfNode(int32_t node) const {
+    auto after = std::upper_bound(deformables.begin(), deformables.end(), node,
+                                  [](int32_t n, const DeformableRecord& record) { return n < record.firstNode; });
+    return *(after - 1);
+  }
+
+  // ---- Stage 5: interleaved solve (called from inside Bullet's solver) -------------------
+  void afterSetup() override {
+    bullet.loadRigidVelocities(rigid);
+    SolverContext ctx = context();
+    if (settings.solver.warmStart)
+      rows.warmStart(ctx);
+    else
+      rows.clearImpulses();
+    for (const DirectBlock& block : directBlocks) block.clearImpulses(rows);
+    bullet.storeRigidVelocities(rigid);
+  }
+
+  // Bounded rows by projected Gauss-Seidel first, then each direct block exactly, so that a
+  // sweep ends with the bilateral rows satisfied, then the contacts no block holds.
+  void afterIteration(int) override {
+    bullet.loadRigidVelocities(rigid);
+    SolverContext ctx = context();
+    SweepStats stats;
+    rows.sweep(ctx, settings.solver.friction, stats);
+    for (DirectBlock& block : directBlocks) block.solve(rows, ctx, stats);
+    // Contacts among deformables couple in crowds (a cloth folded on itself); they are cheap
+    // next to a block, so they get more passes than those with rigid bodies.
+    if (!directBlocks.empty())
+      for (int pass = 0; pass < kFreeContactPasses; ++pass) rows.sweepFreeContacts(ctx, stats, pass > 0);
+    report.rmsDeltaLambda.push_back(stats.rows ? std::sqrt(stats.sumSquares / static_cast<double>(stats.rows)) : 0.0);
+    bullet.storeRigidVelocities(rigid);
+  }
+
+  // ---- Stage 7: integrate ----------------------------------------------------------------
+  void integrateNodes(double h) {
+    for (size_t i = 0; i < nodes.size(); ++i) nodes.position[i] += h * nodes.velocity[i];
+    pushOutOfContacts();
+    for (FixedPointRow& row : rows.fixedPoints) row.previousTarget = row.target;
+  }
+
+  // A non-finite or absurdly fast state means the step diverged: say which body, and stop.
+  // Split-impulse style: a contact found penetrating beyond the slop moves its deformable side
+  // out by a fraction of the excess, without touching velocities, so resting contacts do not
+  // bounce. Each node moves in proportion to its share of the contact's inverse mass.
+  void pushOutOfContacts() {
+    constexpr double kFraction = 0.2;
+    for (const ContactRow& row : rows.contacts) {
+      const double excess = -(row.gap + settings.solver.contactSlop);
+      if (excess <= 0) continue;
+      double inverseMass = 0.0;
+      for (int k = 0; k < 4; ++k) inverseMass += row.coefficient[k] * row.coefficient[k] * nodes.inverseMass[row.node[k]];
+      if (inverseMass == 0.0) continue;
+      const Vec3 push = (kFraction * excess / inverseMass) * row.normal;
+      for (int k = 0; k < 4; ++k) nodes.position[row.node[k]] += row.coefficient[k] * nodes.inverseMass[row.node[k]] * push;
+    }
+  }
+
+  // Post-stabilisation (Cline and Pai 2003): velocity-level rows leave a drift of order
+  // h² v² / L (a cloth corner whipping round at 60 rad/s stretches its edges by half in a step);
+  // each block projects its nodes back onto its rows with the step's own factorisation.
+  void projectDirectBlocks() {
+    for (DirectBlock& block : directBlocks) block.projectPositions(rows, nodes);
+  }
+
+  Status checkDiverged() const {
+    const double limit = settings.divergenceSpeed;
+    auto bad = [limit](const Vec3& x, const Vec3& v) { return !x.allFinite() || !v.allFinite() || v.norm() > limit; };
+    const std::string advice =
+        ": the simulation diverged (try a smaller time step, more iterations or softer springs)";
+    for (const DeformableRecord& body : deformables)
+      for (int32_t i = 0; i < body.nodeCount; ++i) {
+        const int32_t n = body.firstNode + i;
+        if (bad(nodes.position[n], nodes.velocity[n]))
+          return Error{"step " + std::to_string(steps) + ": deformable '" + body.name + "' node " + std::to_string(i) +
+                       " has a non-finite or faster than " + formatNumber(limit) + " m/s state" + advice};
+      }
+    for (int b = 0; b < bullet.rigidBodyCount(); ++b)
+      if (bad(bullet.position(b), bullet.linearVelocity(b)) || !bullet.angularVelocity(b).allFinite())
+        return Error{"step " + std::to_string(steps) + ": rigid body '" + rigidNames[b] +
+                     "' has a non-finite or faster than " + formatNumber(limit) + " m/s state" + advice};
+    return {};
+  }
+
+  // ---- Lookups ---------------------------------------------------------------------------
+  bool validRigid(RigidBodyId id) const { return id.index >= 0 && id.index < bullet.rigidBodyCount(); }
+  bool validDeformable(DeformableId id) const {
+    return id.index >= 0 && id.index < static_cast<int32_t>(deformables.size());
+  }
+  Result<int32_t> globalNode(DeformableId body, int32_t node, const char* who) const {
+    if (!validDeformable(body)) return Error{std::string(who) + ": no deformable body with index " +
+                                             std::to_string(body.index)};
+    const DeformableRecord& record = deformables[body.index];
+    if (node < 0 || node >= record.nodeCount)
+      return Error{std::string(who) + ": node " + std::to_string(node) + " is out of range for deformable '" +
+                   record.name + "' (" + std::to_string(record.nodeCount) + " nodes)"};
+    return record.firstNode + node;
+  }
+};
+
+}  // namespace tandem
