@@ -189,6 +189,13 @@ Result<DeformableId> World::addDeformable(const DeformableDesc& desc) {
     return Error{who + ": bending max force must be positive, got " + formatNumber(desc.bending.maxForce)};
   if (desc.bending.enabled && (!isPositive(desc.bending.frequency) || !(desc.bending.dampingRatio >= 0)))
     return Error{who + ": bending frequency must be positive and its damping ratio >= 0"};
+  const ParadigmSettings& paradigm = desc.paradigm;
+  if (!(paradigm.stiffness > 0 && paradigm.stiffness <= 1))
+    return Error{who + ": paradigm stiffness k must be in (0, 1], got " + formatNumber(paradigm.stiffness)};
+  if (!(paradigm.damping >= 0 && paradigm.damping <= 1))
+    return Error{who + ": paradigm damping must be in [0, 1], got " + formatNumber(paradigm.damping)};
+  if (paradigm.iterations < 1 || paradigm.iterations > 1000)
+    return Error{who + ": paradigm iterations must be in [1, 1000], got " + std::to_string(paradigm.iterations)};
   if (!(std::isfinite(desc.damping) && desc.damping >= 0))
     return Error{who + ": damping must be >= 0 per second and finite, got " + formatNumber(desc.damping)};
   if (!(std::isfinite(desc.collision.thickness) && desc.collision.thickness >= 0))
@@ -233,8 +240,10 @@ Result<DeformableId> World::addDeformable(const DeformableDesc& desc) {
       w.rows.bending.push_back(row);
     }
   }
-  DeformableRecord record{desc.name, first, mesh.nodeCount(), mesh, desc.rowSolver, desc.collision, desc.damping, {},
-                          {}, {}};
+  DeformableRecord record{desc.name, first, mesh.nodeCount(), mesh, desc.rowSolver, desc.collision, desc.paradigm,
+                          desc.damping, {}, {}, {}, {}};
+  record.paradigmEdges = mesh.edges;
+  record.paradigmEdges.insert(record.paradigmEdges.end(), mesh.shearEdges.begin(), mesh.shearEdges.end());
   // The collision surface: its triangles, and the nodes on them (every node when it has none).
   std::vector<bool> onSurface(mesh.nodeCount(), mesh.triangles.empty());
   for (const auto& t : mesh.triangles) {

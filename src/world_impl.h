@@ -8,6 +8,7 @@
 #include "collision/contact_detection.h"
 #include "format.h"
 #include "models/mass_spring.h"
+#include "models/position_based.h"
 #include "solver/constraint_rows.h"
 #include "solver/direct_block.h"
 
@@ -32,10 +33,12 @@ struct DeformableRecord {
   DeformableMesh restMesh;
   RowSolverKind rowSolver = RowSolverKind::Auto;
   CollisionSettings collision;
+  ParadigmSettings paradigm;
   double damping = 0.0;
   std::vector<int32_t> surfaceNodes;                       // global indices
   std::vector<std::array<int32_t, 3>> surfaceTriangles;    // global indices
   std::vector<std::array<int32_t, 2>> surfaceEdges;        // global indices
+  std::vector<std::array<int32_t, 2>> paradigmEdges;       // local: edges and shear edges
 };
 
 class StageClock {
@@ -91,7 +94,24 @@ struct World::Impl final : bullet::SolverHooks {
       if (nodes.inverseMass[i] == 0.0) continue;
       nodes.velocity[i] += h * (settings.gravity + nodes.inverseMass[i] * nodes.force[i]);
     }
-    for (const DeformableRecord& body : deformables) dampInternalMotion(body, h);
+    for (const DeformableRecord& body : deformables) {
+      dampInternalMotion(body, h);
+      applyParadigm(body, h);
+    }
+  }
+
+  // Position-based paradigms turn goals into velocities (mass-spring bodies are done: their
+  // forces are in v* already).
+  void applyParadigm(const DeformableRecord& body, double h) {
+    if (body.paradigm.type == ParadigmType::MassSpring) return;
+    const PositionBasedBody model{body.firstNode,           body.nodeCount,
+                                  body.restMesh.positions,  body.paradigmEdges,
+                                  body.restMesh.tetrahedra, body.paradigm.stiffness,
+                                  body.paradigm.damping,    body.paradigm.iterations};
+    if (body.paradigm.type == ParadigmType::ShapeMatching)
+      applyShapeMatching(model, nodes, h);
+    else
+      applyPositionBasedDynamics(model, nodes, h);
   }
 
   // v ← v − min(c h, 1) (v − v̄), v̄ the body's mass-weighted mean velocity over its free nodes.

@@ -154,6 +154,21 @@ struct MassSpringSettings {
 enum class RowSolverKind { Auto, Direct, Iterative };
 inline constexpr int kAutoDirectRowLimit = 1500;
 
+// How a deformable computes the unconstrained velocity of its nodes each step (paper §3); the
+// solver treats every paradigm alike, and they mix freely in one scene.
+enum class ParadigmType {
+  MassSpring,     // forces from the springs on its edges (DeformableDesc::springs)
+  ShapeMatching,  // goals from its rest shape matched onto it (paper eq. 2)
+  PositionBased,  // goals from projecting its distance and volume constraints (paper eq. 3)
+};
+
+struct ParadigmSettings {
+  ParadigmType type = ParadigmType::MassSpring;
+  double stiffness = 1.0;  // k in (0, 1]: how far towards its goals a body goes per step
+  double damping = 0.0;    // γ in [0, 1]
+  int iterations = 4;      // constraint projections per step (position-based)
+};
+
 struct CollisionSettings {
   bool enabled = true;         // against rigid bodies and other deformables
   bool selfCollision = false;  // against itself, away from its own neighbourhood
@@ -167,6 +182,7 @@ struct DeformableDesc {
   MassSpringSettings springs;
   InextensibilitySettings inextensibility;
   BendingSettings bending;
+  ParadigmSettings paradigm;
   CollisionSettings collision;
   RowSolverKind rowSolver = RowSolverKind::Auto;
   // 1/s: each step, every node loses this fraction per second of its velocity relative to the

@@ -1,0 +1,106 @@
+#include "models/position_based.h"
+
+#include <Eigen/SVD>
+
+#include <cmath>
+
+namespace tandem {
+namespace {
+
+std::vector<Vec3> predict(const PositionBasedBody& body, const NodeArrays& nodes, double timeStep) {
+  std::vector<Vec3> predicted(body.nodeCount);
+  for (int32_t i = 0; i < body.nodeCount; ++i)
+    predicted[i] = nodes.position[body.firstNode + i] + timeStep * nodes.velocity[body.firstNode + i];
+  return predicted;
+}
+
+// Mass-weighted centre; pinned nodes (m⁻¹ = 0) count with a large mass.
+Vec3 centre(std::span<const Vec3> x, std::span<const double> inverseMass, double& totalMass) {
+  Vec3 sum = Vec3::Zero();
+  totalMass = 0.0;
+  for (size_t i = 0; i < x.size(); ++i) {
+    const double m = inverseMass[i] > 0 ? 1.0 / inverseMass[i] : 1e12;
+    sum += m * x[i];
+    totalMass += m;
+  }
+  return sum / totalMass;
+}
+
+}  // namespace
+
+std::vector<Vec3> shapeMatchingGoals(const PositionBasedBody& body, std::span<const Vec3> predicted,
+                                     std::span<const double> inverseMass) {
+  double mass = 0.0;
+  const Vec3 c = centre(predicted, inverseMass, mass);
+  const Vec3 c0 = centre(body.restPositions, inverseMass, mass);
+  Mat3 a = Mat3::Zero();
+  for (int32_t i = 0; i < body.nodeCount; ++i) {
+    const double m = inverseMass[i] > 0 ? 1.0 / inverseMass[i] : 1e12;
+    a += m * (predicted[i] - c) * (body.restPositions[i] - c0).transpose();
+  }
+  // The rotation nearest A: U Vᵀ from its SVD, with the reflection (if any) taken out.
+  const Eigen::JacobiSVD<Mat3> svd(a, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Mat3 u = svd.matrixU();
+  if ((u * svd.matrixV().transpose()).determinant() < 0) u.col(2) = -u.col(2);
+  const Mat3 rotation = u * svd.matrixV().transpose();
+  std::vector<Vec3> goals(body.nodeCount);
+  for (int32_t i = 0; i < body.nodeCount; ++i) goals[i] = rotation * (body.restPositions[i] - c0) + c;
+  return goals;
+}
+
+std::vector<Vec3> positionBasedGoals(const PositionBasedBody& body, std::span<const Vec3> predicted,
+                                     std::span<const double> inverseMass) {
+  std::vector<Vec3> x(predicted.begin(), predicted.end());
+  const double k = 1.0 - std::pow(1.0 - body.stiffness, 1.0 / body.iterations);
+  const auto& rest = body.restPositions;
+  for (int iteration = 0; iteration < body.iterations; ++iteration) {
+    for (const auto& e : body.edges) {
+      const double wi = inverseMass[e[0]], wj = inverseMass[e[1]];
+      if (wi + wj == 0.0) continue;
+      const Vec3 d = x[e[1]] - x[e[0]];
+      const double length = d.norm();
+      if (length < 1e-12) continue;
+      const Vec3 correction = k * (length - (rest[e[1]] - rest[e[0]]).norm()) / (wi + wj) * (d / length);
+      x[e[0]] += wi * correction;
+      x[e[1]] -= wj * correction;
+    }
+    for (const auto& t : body.tetrahedra) {
+      // C = 6V − 6V⁰ with 6V = (x₁ − x₀)·((x₂ − x₀) × (x₃ − x₀)).
+      const Vec3 e1 = x[t[1]] - x[t[0]], e2 = x[t[2]] - x[t[0]], e3 = x[t[3]] - x[t[0]];
+      const double volume = e1.dot(e2.cross(e3));
+      const double restVolume = (rest[t[1]] - rest[t[0]]).dot((rest[t[2]] - rest[t[0]]).cross(rest[t[3]] - rest[t[0]]));
+      std::array<Vec3, 4> gradient{Vec3::Zero(), e2.cross(e3), e3.cross(e1), e1.cross(e2)};
+      gradient[0] = -(gradient[1] + gradient[2] + gradient[3]);
+      double denominator = 0.0;
+      for (int n = 0; n < 4; ++n) denominator += inverseMass[t[n]] * gradient[n].squaredNorm();
+      if (denominator < 1e-24) continue;
+      const double scale = -k * (volume - restVolume) / denominator;
+      for (int n = 0; n < 4; ++n) x[t[n]] += scale * inverseMass[t[n]] * gradient[n];
+    }
+  }
+  return x;
+}
+
+void applyShapeMatching(const PositionBasedBody& body, NodeArrays& nodes, double timeStep) {
+  const std::vector<Vec3> predicted = predict(body, nodes, timeStep);
+  const std::span<const double> inverseMass(nodes.inverseMass.data() + body.firstNode, body.nodeCount);
+  const std::vector<Vec3> goals = shapeMatchingGoals(body, predicted, inverseMass);
+  for (int32_t i = 0; i < body.nodeCount; ++i) {
+    if (inverseMass[i] == 0.0) continue;
+    Vec3& v = nodes.velocity[body.firstNode + i];
+    v = (1.0 - body.damping) * (v + body.stiffness * (goals[i] - predicted[i]) / timeStep);
+  }
+}
+
+void applyPositionBasedDynamics(const PositionBasedBody& body, NodeArrays& nodes, double timeStep) {
+  const std::vector<Vec3> predicted = predict(body, nodes, timeStep);
+  const std::span<const double> inverseMass(nodes.inverseMass.data() + body.firstNode, body.nodeCount);
+  const std::vector<Vec3> goals = positionBasedGoals(body, predicted, inverseMass);
+  for (int32_t i = 0; i < body.nodeCount; ++i) {
+    if (inverseMass[i] == 0.0) continue;
+    Vec3& v = nodes.velocity[body.firstNode + i];
+    v = body.damping * v + (1.0 - body.damping) * (goals[i] - nodes.position[body.firstNode + i]) / timeStep;
+  }
+}
+
+}  // namespace tandem

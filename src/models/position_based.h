@@ -1,0 +1,52 @@
+// Position-based paradigms: shape matching and position-based dynamics (paper §3, eq. 1–3).
+//
+// Both turn goal positions into the unconstrained velocities the row solver starts from, so
+// the solver never learns which paradigm a body uses. With v* = v + h m⁻¹ f (forces and
+// gravity, as every paradigm gets) and the predicted positions x* = x + h v* (eq. 1):
+//
+//   shape matching (eq. 2):  v ← (1 − γ) (v* + k (g − x*) / h)
+//     g = R (x⁰ − c⁰) + c*, the rest shape moved rigidly onto x*: c* and c⁰ the mass centres,
+//     R the rotation of A = Σ m (x* − c*)(x⁰ − c⁰)ᵀ (polar decomposition, by SVD, reflections
+//     removed). Linear shape matching, one cluster per body.
+//   PBD (eq. 3):             v ← γ v* + (1 − γ) (g − x) / h
+//     g = x* projected `iterations` times onto the body's distance (every edge) and volume
+//     (every tetrahedron) constraints, each correction scaled by k' = 1 − (1 − k)^(1/iterations)
+//     so that the stiffness k does not depend on the iteration count (Müller et al. 2007).
+//
+// Reading the paper's ṽ in eq. 2 as v*: with ṽ = v a body at rest would lose the velocity
+// gravity gives it in the step. Under any rigid motion g = x* exactly: no internal force.
+#pragma once
+
+#include "solver/solver_state.h"
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace tandem {
+
+struct PositionBasedBody {
+  int32_t firstNode = 0;
+  int32_t nodeCount = 0;
+  std::span<const Vec3> restPositions;                      // local indices
+  std::span<const std::array<int32_t, 2>> edges;           // local indices
+  std::span<const std::array<int32_t, 4>> tetrahedra;      // local indices
+  double stiffness = 1.0;  // k
+  double damping = 0.0;    // γ
+  int iterations = 4;      // PBD
+};
+
+// Shape matching's goals g for predicted positions `predicted` (local indices).
+std::vector<Vec3> shapeMatchingGoals(const PositionBasedBody& body, std::span<const Vec3> predicted,
+                                     std::span<const double> inverseMass);
+
+// PBD's goals: `predicted` projected onto the distance and volume constraints.
+std::vector<Vec3> positionBasedGoals(const PositionBasedBody& body, std::span<const Vec3> predicted,
+                                     std::span<const double> inverseMass);
+
+// Applies eq. 2 or eq. 3 to the body's nodes; `nodes.velocity` holds v* on entry.
+void applyShapeMatching(const PositionBasedBody& body, NodeArrays& nodes, double timeStep);
+void applyPositionBasedDynamics(const PositionBasedBody& body, NodeArrays& nodes, double timeStep);
+
+}  // namespace tandem

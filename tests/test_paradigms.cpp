@@ -1,0 +1,135 @@
+// The deformable paradigms: no internal force under rigid motion, and jelly that settles back
+// into its shape.
+#include "models/mass_spring.h"
+#include "models/position_based.h"
+
+#include <tandem/world.h>
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+namespace tandem {
+namespace {
+
+constexpr double kStep = 1.0 / 50.0;  // the paper's
+
+DeformableMesh jellyMesh() { return *makeTetCylinder({0, 0, 0}, 0.1, 0.2, 2, 8, 3, 0.5); }
+
+// The rest mesh moved rigidly: rotated about a random axis and translated.
+std::vector<Vec3> movedRigidly(const std::vector<Vec3>& rest, std::mt19937& rng, Mat3& rotation, Vec3& translation) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  rotation = Eigen::AngleAxisd(3 * u(rng), Vec3(u(rng), u(rng), u(rng)).normalized()).toRotationMatrix();
+  translation = Vec3(u(rng), u(rng), u(rng));
+  std::vector<Vec3> moved;
+  for (const Vec3& x : rest) moved.push_back(rotation * x + translation);
+  return moved;
+}
+
+TEST(Paradigms, RigidMotionGivesNoGoalDisplacement) {
+  const DeformableMesh mesh = jellyMesh();
+  std::vector<double> inverseMass;
+  for (double m : mesh.masses) inverseMass.push_back(1.0 / m);
+  std::vector<std::array<int32_t, 2>> edges = mesh.edges;
+  const PositionBasedBody body{0, mesh.nodeCount(), mesh.positions, edges, mesh.tetrahedra, 0.7, 0.1, 5};
+  std::mt19937 rng(5);
+  for (int trial = 0; trial < 10; ++trial) {
+    Mat3 rotation;
+    Vec3 translation;
+    const std::vector<Vec3> moved = movedRigidly(mesh.positions, rng, rotation, translation);
+    const std::vector<Vec3> matched = shapeMatchingGoals(body, moved, inverseMass);
+    const std::vector<Vec3> projected = positionBasedGoals(body, moved, inverseMass);
+    for (int32_t i = 0; i < mesh.nodeCount(); ++i) {
+      const double scale = std::max(1.0, moved[i].norm());
+      EXPECT_LT((matched[i] - moved[i]).norm(), 1e-9 * scale);
+      EXPECT_LT((projected[i] - moved[i]).norm(), 1e-9 * scale);
+    }
+  }
+}
+
+TEST(Paradigms, RigidMotionGivesNoSpringForce) {
+  const DeformableMesh mesh = jellyMesh();
+  std::mt19937 rng(6);
+  Mat3 rotation;
+  Vec3 translation;
+  NodeArrays nodes;
+  nodes.position = movedRigidly(mesh.positions, rng, rotation, translation);
+  // A rigid velocity field: v = u + ω × (x − c).
+  const Vec3 linear(0.3, -1.0, 0.2), angular(2.0, -1.0, 0.5);
+  for (const Vec3& x : nodes.position) nodes.velocity.push_back(linear + angular.cross(x - translation));
+  nodes.force.assign(mesh.positions.size(), Vec3::Zero());
+  std::vector<EdgeSpring> springs;
+  for (const auto& e : mesh.edges)
+    springs.push_back({e[0], e[1], (mesh.positions[e[1]] - mesh.positions[e[0]]).norm(), 1e4, 10.0});
+  addSpringForces(springs, nodes);
+  for (const Vec3& f : nodes.force) EXPECT_LT(f.norm(), 1e-9 * 1e4 * 0.1);  // against k times a length
+}
+
+double minimumTetVolume(const DeformableMesh& mesh, std::span<const Vec3> x) {
+  double smallest = 1e300;
+  for (const auto& t : mesh.tetrahedra)
+    smallest = std::min(smallest, (x[t[1]] - x[t[0]]).dot((x[t[2]] - x[t[0]]).cross(x[t[3]] - x[t[0]])));
+  return smallest;
+}
+
+class JellyDrop : public ::testing::TestWithParam<ParadigmType> {};
+
+TEST_P(JellyDrop, SettlesIntoItsShapeOnTheGround) {
+  GTEST_SKIP() << "not yet (issue 4): at h = 1/50 s shape matching settles 12 % (k = 1) to 24 % (k = 0.5) "
+                  "short of its height: the ground holds only the bottom layer while the shape fit is "
+                  "global, which leaves that layer (M / m_held) h^2 g / k, about 2.4 cm, below its place; "
+                  "PBD's projection ignores the ground and jitters at up to 1 m/s. Next: clusters, or "
+                  "projecting inside the solver's sweeps.";
+  World world;
+  RigidBodyDesc ground;
+  ground.name = "ground";
+  ground.shape = RigidShape::plane({0, 1, 0}, 0.0);
+  ground.motion = MotionType::Static;
+  ASSERT_TRUE(world.addRigidBody(ground).ok());
+  DeformableDesc jelly;
+  jelly.name = "jelly";
+  jelly.mesh = *makeTetCylinder({0, 0.15, 0}, 0.1, 0.2, 2, 8, 3, 0.5);
+  jelly.paradigm.type = GetParam();
+  jelly.paradigm.stiffness = 0.5;
+  jelly.paradigm.damping = 0.05;
+  const DeformableId id = *world.addDeformable(jelly);
+  for (int step = 0; step < 150; ++step) ASSERT_TRUE(world.step(kStep).ok()) << "step " << step;  // 3 s
+  const auto x = world.nodePositions(id);
+  double low = 1e9, high = -1e9, speed = 0.0;
+  for (const Vec3& p : x) {
+    ASSERT_TRUE(p.allFinite());
+    low = std::min(low, p.y());
+    high = std::max(high, p.y());
+  }
+  for (const Vec3& v : world.nodeVelocities(id)) speed = std::max(speed, v.norm());
+  EXPECT_NEAR(high - low, 0.2, 0.05 * 0.2);            // its rest height, within 5 %
+  EXPECT_GT(low, 0.0);                                  // on the ground, not in it
+  EXPECT_LT(low, 0.02);
+  EXPECT_LT(speed, 0.01);                               // at rest
+  EXPECT_GT(minimumTetVolume(world.restMesh(id), x), 0.0);  // no tet turned inside out
+}
+
+INSTANTIATE_TEST_SUITE_P(Paradigms, JellyDrop, ::testing::Values(ParadigmType::ShapeMatching, ParadigmType::PositionBased),
+                         [](const ::testing::TestParamInfo<ParadigmType>& param) {
+                           return param.param == ParadigmType::ShapeMatching ? std::string("ShapeMatching")
+                                                                              : std::string("PositionBased");
+                         });
+
+TEST(Paradigms, BadSettingsAreRefused) {
+  World world;
+  DeformableDesc jelly;
+  jelly.name = "jelly";
+  jelly.mesh = jellyMesh();
+  jelly.paradigm.type = ParadigmType::ShapeMatching;
+  jelly.paradigm.stiffness = 0.0;
+  EXPECT_EQ(world.addDeformable(jelly).message(), "deformable 'jelly': paradigm stiffness k must be in (0, 1], got 0");
+  jelly.paradigm.stiffness = 0.5;
+  jelly.paradigm.damping = 1.5;
+  EXPECT_EQ(world.addDeformable(jelly).message(), "deformable 'jelly': paradigm damping must be in [0, 1], got 1.5");
+  jelly.paradigm.damping = 0.1;
+  jelly.paradigm.iterations = 0;
+  EXPECT_EQ(world.addDeformable(jelly).message(), "deformable 'jelly': paradigm iterations must be in [1, 1000], got 0");
+}
+
+}  // namespace
+}  // namespace tandem
