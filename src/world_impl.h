@@ -287,7 +287,6 @@ struct World::Impl final : bullet::SolverHooks {
     for (FixedPointRow& row : rows.fixedPoints) row.previousTarget = row.target;
   }
 
-  // A non-finite or absurdly fast state means the step diverged: say which body, and stop.
   // Split-impulse style: a contact found penetrating beyond the slop moves its deformable side
   // out by a fraction of the excess, without touching velocities, so resting contacts do not
   // bounce. Each node moves in proportion to its share of the contact's inverse mass.
@@ -311,6 +310,7 @@ struct World::Impl final : bullet::SolverHooks {
     for (DirectBlock& block : directBlocks) block.projectPositions(rows, nodes);
   }
 
+  // A non-finite or absurdly fast state means the step diverged: say which body, and stop.
   Status checkDiverged() const {
     const double limit = settings.divergenceSpeed;
     auto bad = [limit](const Vec3& x, const Vec3& v) { return !x.allFinite() || !v.allFinite() || v.norm() > limit; };
