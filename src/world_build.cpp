@@ -196,6 +196,13 @@ Result<DeformableId> World::addDeformable(const DeformableDesc& desc) {
     return Error{who + ": paradigm damping must be in [0, 1], got " + formatNumber(paradigm.damping)};
   if (paradigm.iterations < 1 || paradigm.iterations > 1000)
     return Error{who + ": paradigm iterations must be in [1, 1000], got " + std::to_string(paradigm.iterations)};
+  if (paradigm.type == ParadigmType::CorotationalFem) {
+    if (!(std::isfinite(paradigm.youngsModulus) && paradigm.youngsModulus > 0))
+      return Error{who + ": Young's modulus must be positive, got " + formatNumber(paradigm.youngsModulus) + " Pa"};
+    if (!(paradigm.poissonRatio >= 0 && paradigm.poissonRatio < 0.5))
+      return Error{who + ": Poisson's ratio must be in [0, 0.5), got " + formatNumber(paradigm.poissonRatio)};
+    if (desc.mesh.tetrahedra.empty()) return Error{who + ": co-rotational FEM needs a tetrahedral mesh"};
+  }
   if (!(std::isfinite(desc.damping) && desc.damping >= 0))
     return Error{who + ": damping must be >= 0 per second and finite, got " + formatNumber(desc.damping)};
   if (!(std::isfinite(desc.collision.thickness) && desc.collision.thickness >= 0))
@@ -241,7 +248,9 @@ Result<DeformableId> World::addDeformable(const DeformableDesc& desc) {
     }
   }
   DeformableRecord record{desc.name, first, mesh.nodeCount(), mesh, desc.rowSolver, desc.collision, desc.paradigm,
-                          desc.damping, {}, {}, {}, {}};
+                          desc.damping, {}, {}, {}, {}, {}};
+  if (desc.paradigm.type == ParadigmType::CorotationalFem)
+    record.fem = makeFemBody(first, mesh.positions, mesh.tetrahedra, desc.paradigm.youngsModulus, desc.paradigm.poissonRatio);
   record.paradigmEdges = mesh.edges;
   record.paradigmEdges.insert(record.paradigmEdges.end(), mesh.shearEdges.begin(), mesh.shearEdges.end());
   // The collision surface: its triangles, and the nodes on them (every node when it has none).

@@ -7,6 +7,7 @@
 #include "bullet/bullet_world.h"
 #include "collision/contact_detection.h"
 #include "format.h"
+#include "models/corotational_fem.h"
 #include "models/mass_spring.h"
 #include "models/position_based.h"
 #include "solver/constraint_rows.h"
@@ -39,6 +40,7 @@ struct DeformableRecord {
   std::vector<std::array<int32_t, 3>> surfaceTriangles;    // global indices
   std::vector<std::array<int32_t, 2>> surfaceEdges;        // global indices
   std::vector<std::array<int32_t, 2>> paradigmEdges;       // local: edges and shear edges
+  FemBody fem;                                             // co-rotational FEM bodies only
 };
 
 class StageClock {
@@ -90,20 +92,23 @@ struct World::Impl final : bullet::SolverHooks {
   void computeUnconstrainedVelocities(double h) {
     for (Vec3& f : nodes.force) f.setZero();
     addSpringForces(springs, nodes);
-    for (size_t i = 0; i < nodes.size(); ++i) {
-      if (nodes.inverseMass[i] == 0.0) continue;
-      nodes.velocity[i] += h * (settings.gravity + nodes.inverseMass[i] * nodes.force[i]);
-    }
-    for (const DeformableRecord& body : deformables) {
+    for (DeformableRecord& body : deformables) {
+      if (body.paradigm.type == ParadigmType::CorotationalFem) {
+        solveFemVelocities(body.fem, nodes, settings.gravity, h);  // implicit; gravity included
+      } else {
+        for (int32_t i = body.firstNode; i < body.firstNode + body.nodeCount; ++i)
+          if (nodes.inverseMass[i] != 0.0)
+            nodes.velocity[i] += h * (settings.gravity + nodes.inverseMass[i] * nodes.force[i]);
+      }
       dampInternalMotion(body, h);
       applyParadigm(body, h);
     }
   }
 
-  // Position-based paradigms turn goals into velocities (mass-spring bodies are done: their
-  // forces are in v* already).
+  // Position-based paradigms turn goals into velocities (mass-spring and FEM bodies are done:
+  // their forces are in v* already).
   void applyParadigm(const DeformableRecord& body, double h) {
-    if (body.paradigm.type == ParadigmType::MassSpring) return;
+    if (body.paradigm.type == ParadigmType::MassSpring || body.paradigm.type == ParadigmType::CorotationalFem) return;
     const PositionBasedBody model{body.firstNode,           body.nodeCount,
                                   body.restMesh.positions,  body.paradigmEdges,
                                   body.restMesh.tetrahedra, body.paradigm.stiffness,

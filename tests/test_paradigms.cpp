@@ -1,5 +1,6 @@
 // The deformable paradigms: no internal force under rigid motion, and jelly that settles back
 // into its shape.
+#include "models/corotational_fem.h"
 #include "models/mass_spring.h"
 #include "models/position_based.h"
 
@@ -65,6 +66,72 @@ TEST(Paradigms, RigidMotionGivesNoSpringForce) {
   for (const Vec3& f : nodes.force) EXPECT_LT(f.norm(), 1e-9 * 1e4 * 0.1);  // against k times a length
 }
 
+TEST(Paradigms, RigidMotionGivesNoFemForce) {
+  const DeformableMesh mesh = jellyMesh();
+  const FemBody body = makeFemBody(0, mesh.positions, mesh.tetrahedra, 50e3, 0.3);
+  std::mt19937 rng(7);
+  for (int trial = 0; trial < 10; ++trial) {
+    Mat3 rotation;
+    Vec3 translation;
+    NodeArrays nodes;
+    nodes.position = movedRigidly(mesh.positions, rng, rotation, translation);
+    nodes.force.assign(mesh.positions.size(), Vec3::Zero());
+    addFemForces(body, nodes);
+    for (const Vec3& f : nodes.force) EXPECT_LT(f.norm(), 1e-9 * 50e3 * 0.1 * 0.1);  // against E times an area
+  }
+}
+
+// A bar stretched 1 % along its length (ν = 0) pulls its ends together with E A ε, and leaves
+// no net force on any node inside it; turning the stretched bar round turns the forces with it.
+TEST(Paradigms, FemStretchedBarPullsWithYoungsModulusTimesStrain) {
+  const double youngs = 50e3, length = 1.0, side = 0.1, strain = 0.01;
+  const DeformableMesh mesh = *makeTetBox({0, 0, 0}, {length, side, side}, 10, 1, 1, 1.0);
+  const FemBody body = makeFemBody(0, mesh.positions, mesh.tetrahedra, youngs, 0.0);
+  const Mat3 turn = Eigen::AngleAxisd(0.8, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+  NodeArrays nodes;
+  for (const Vec3& x : mesh.positions) nodes.position.push_back(turn * Vec3((1 + strain) * x.x(), x.y(), x.z()));
+  nodes.force.assign(mesh.positions.size(), Vec3::Zero());
+  addFemForces(body, nodes);
+  Vec3 farEnd = Vec3::Zero();
+  for (int32_t i = 0; i < mesh.nodeCount(); ++i) {
+    const Vec3 local = turn.transpose() * nodes.force[i];
+    if (mesh.positions[i].x() > length - 1e-9) {
+      farEnd += local;
+    } else if (mesh.positions[i].x() > 1e-9) {
+      EXPECT_LT(local.norm(), 1e-9 * youngs * side * side) << "node " << i;
+    }
+  }
+  EXPECT_NEAR(farEnd.x(), -youngs * side * side * strain, 1e-9 * youngs * side * side);
+  EXPECT_NEAR(farEnd.y(), 0.0, 1e-9 * youngs * side * side);
+  EXPECT_NEAR(farEnd.z(), 0.0, 1e-9 * youngs * side * side);
+}
+
+// A bar hung from its top face settles with its bottom lowered by ρ g L² / 2E (ν = 0).
+TEST(Paradigms, FemHangingBarStretchesUnderItsWeight) {
+  const double youngs = 20e3, length = 1.0, side = 0.1, mass = 2.0;
+  World world;
+  DeformableDesc bar;
+  bar.name = "bar";
+  bar.mesh = *makeTetBox({0, -length, 0}, {side, 0, side}, 1, 10, 1, mass);
+  bar.paradigm.type = ParadigmType::CorotationalFem;
+  bar.paradigm.youngsModulus = youngs;
+  bar.paradigm.poissonRatio = 0.0;
+  bar.collision.enabled = false;
+  const DeformableId id = *world.addDeformable(bar);
+  for (int32_t i = 0; i < bar.mesh.nodeCount(); ++i)
+    if (bar.mesh.positions[i].y() > -1e-9) {
+      ASSERT_TRUE(world.fixNode(id, i).ok());
+    }
+  for (int step = 0; step < 250; ++step) ASSERT_TRUE(world.step(kStep).ok()) << "step " << step;  // 5 s
+  const double density = mass / (length * side * side);
+  const double expected = density * 9.81 * length * length / (2 * youngs);
+  double bottom = 0.0, speed = 0.0;
+  for (const Vec3& x : world.nodePositions(id)) bottom = std::min(bottom, x.y());
+  for (const Vec3& v : world.nodeVelocities(id)) speed = std::max(speed, v.norm());
+  EXPECT_NEAR(-length - bottom, expected, 0.03 * expected);
+  EXPECT_LT(speed, 1e-3);
+}
+
 double minimumTetVolume(const DeformableMesh& mesh, std::span<const Vec3> x) {
   double smallest = 1e300;
   for (const auto& t : mesh.tetrahedra)
@@ -75,6 +142,12 @@ double minimumTetVolume(const DeformableMesh& mesh, std::span<const Vec3> x) {
 class JellyDrop : public ::testing::TestWithParam<ParadigmType> {};
 
 TEST_P(JellyDrop, SettlesIntoItsShapeOnTheGround) {
+  if (GetParam() == ParadigmType::CorotationalFem)
+    GTEST_SKIP() << "not yet (issue 4): the FEM jelly comes to rest 12 % short of its height (0.176 m of "
+                    "0.2 m) for any E and nu, even set down gently, with an unbalanced elastic force of "
+                    "56 N left on an interior axis node; holding ground nodes along the normal in the "
+                    "implicit solve (filtered CG) did not change it. Pinned FEM bodies match theory "
+                    "(FemHangingBarStretchesUnderItsWeight).";
   GTEST_SKIP() << "not yet (issue 4): at h = 1/50 s shape matching settles 12 % (k = 1) to 24 % (k = 0.5) "
                   "short of its height: the ground holds only the bottom layer while the shape fit is "
                   "global, which leaves that layer (M / m_held) h^2 g / k, about 2.4 cm, below its place; "
@@ -109,10 +182,14 @@ TEST_P(JellyDrop, SettlesIntoItsShapeOnTheGround) {
   EXPECT_GT(minimumTetVolume(world.restMesh(id), x), 0.0);  // no tet turned inside out
 }
 
-INSTANTIATE_TEST_SUITE_P(Paradigms, JellyDrop, ::testing::Values(ParadigmType::ShapeMatching, ParadigmType::PositionBased),
+INSTANTIATE_TEST_SUITE_P(Paradigms, JellyDrop, ::testing::Values(ParadigmType::ShapeMatching, ParadigmType::PositionBased,
+                                                             ParadigmType::CorotationalFem),
                          [](const ::testing::TestParamInfo<ParadigmType>& param) {
-                           return param.param == ParadigmType::ShapeMatching ? std::string("ShapeMatching")
-                                                                              : std::string("PositionBased");
+                           switch (param.param) {
+                             case ParadigmType::ShapeMatching: return std::string("ShapeMatching");
+                             case ParadigmType::PositionBased: return std::string("PositionBased");
+                             default: return std::string("CorotationalFem");
+                           }
                          });
 
 TEST(Paradigms, BadSettingsAreRefused) {

@@ -160,6 +160,7 @@ enum class ParadigmType {
   MassSpring,     // forces from the springs on its edges (DeformableDesc::springs)
   ShapeMatching,  // goals from its rest shape matched onto it (paper eq. 2)
   PositionBased,  // goals from projecting its distance and volume constraints (paper eq. 3)
+  CorotationalFem,  // linear elasticity on its tetrahedra, rotations removed, solved implicitly
 };
 
 struct ParadigmSettings {
@@ -167,6 +168,8 @@ struct ParadigmSettings {
   double stiffness = 1.0;  // k in (0, 1]: how far towards its goals a body goes per step
   double damping = 0.0;    // γ in [0, 1]
   int iterations = 4;      // constraint projections per step (position-based)
+  double youngsModulus = 50e3;  // E, Pa (co-rotational FEM)
+  double poissonRatio = 0.3;    // ν in [0, 0.5) (co-rotational FEM)
 };
 
 struct CollisionSettings {
