@@ -38,6 +38,14 @@ void scatter(const FemTetrahedron& tet, const Mat3& p, std::span<Vec3> out, int3
   }
 }
 
+// P = R (2μ ε + λ tr(ε) I) at positions x; `rotation` gets R.
+Mat3 firstPiolaStress(const FemBody& body, const FemTetrahedron& tet, std::span<const Vec3> x, Mat3& rotation) {
+  const Mat3 f = edgeMatrix(x, tet.node, 0) * tet.restInverse;
+  rotation = rotationOf(f);
+  const Mat3 strain = 0.5 * (rotation.transpose() * f + f.transpose() * rotation) - Mat3::Identity();
+  return rotation * stress(strain, body.mu, body.lambda);
+}
+
 }  // namespace
 
 FemBody makeFemBody(int32_t firstNode, std::span<const Vec3> restPositions,
@@ -60,27 +68,18 @@ FemBody makeFemBody(int32_t firstNode, std::span<const Vec3> restPositions,
 }
 
 void addFemForces(const FemBody& body, NodeArrays& nodes) {
-  for (const FemTetrahedron& tet : body.tetrahedra) {
-    const Mat3 f = edgeMatrix(nodes.position, tet.node, 0) * tet.restInverse;
-    const Mat3 r = rotationOf(f);
-    const Mat3 strain = 0.5 * (r.transpose() * f + f.transpose() * r) - Mat3::Identity();
-    scatter(tet, r * stress(strain, body.mu, body.lambda), nodes.force, 0);
-  }
+  Mat3 rotation;
+  for (const FemTetrahedron& tet : body.tetrahedra)
+    scatter(tet, firstPiolaStress(body, tet, nodes.position, rotation), nodes.force, 0);
 }
 
 void solveFemVelocities(FemBody& body, NodeArrays& nodes, const Vec3& gravity, double h) {
   const int32_t count = body.nodeCount, first = body.firstNode;
   // Forces at x, and the rotations the stiffness is taken with.
-  std::vector<Mat3> rotations;
-  rotations.reserve(body.tetrahedra.size());
+  std::vector<Mat3> rotations(body.tetrahedra.size());
   std::vector<Vec3> force(count, Vec3::Zero());
-  for (const FemTetrahedron& tet : body.tetrahedra) {
-    const Mat3 f = edgeMatrix(nodes.position, tet.node, 0) * tet.restInverse;
-    const Mat3 r = rotationOf(f);
-    rotations.push_back(r);
-    const Mat3 strain = 0.5 * (r.transpose() * f + f.transpose() * r) - Mat3::Identity();
-    scatter(tet, r * stress(strain, body.mu, body.lambda), force, first);
-  }
+  for (size_t t = 0; t < body.tetrahedra.size(); ++t)
+    scatter(body.tetrahedra[t], firstPiolaStress(body, body.tetrahedra[t], nodes.position, rotations[t]), force, first);
   auto free = [&](int32_t i) { return nodes.inverseMass[first + i] > 0; };
   // K δx, matrix-free, with R held.
   auto stiffness = [&](const std::vector<Vec3>& dx, std::vector<Vec3>& out) {
