@@ -169,6 +169,28 @@ struct World::Impl final : bullet::SolverHooks {
     previousContacts.clear();
     for (const ContactRow& row : rows.contacts)
       previousContacts[row.key] = {row.lambdaNormal, row.impulse() - row.lambdaNormal * row.normal};
+    rememberFemSupports();
+  }
+
+  // The static and kinematic surfaces FEM nodes touched or neared, with the gap left at the
+  // step's end, for the next step's FEM solve (see models/corotational_fem.h).
+  void rememberFemSupports() {
+    std::vector<FemBody*> fem;
+    for (DeformableRecord& body : deformables) {
+      if (body.paradigm.type != ParadigmType::CorotationalFem) continue;
+      clearSupports(body.fem);
+      fem.push_back(&body.fem);
+    }
+    if (fem.empty()) return;
+    const SolverContext ctx = context();
+    for (const ContactRow& row : rows.contacts) {
+      const bool nodeOnStill = row.body >= 0 && rigid[row.body].inverseMass == 0.0 && row.coefficient[0] == 1.0 &&
+                               row.coefficient[1] == 0.0 && row.coefficient[2] == 0.0 && row.coefficient[3] == 0.0;
+      if (!nodeOnStill) continue;
+      const double surfaceSpeed = row.normal.dot(rigid[row.body].velocityAt(row.offset));
+      const double gapAtEnd = row.gap + timeStep * row.normal.dot(contactRelativeVelocity(row, ctx));
+      for (FemBody* body : fem) addSupport(*body, row.node[0], row.normal, gapAtEnd, surfaceSpeed);
+    }
   }
 
   // ---- Stage 4: rows ---------------------------------------------------------------------

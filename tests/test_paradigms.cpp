@@ -142,17 +142,12 @@ double minimumTetVolume(const DeformableMesh& mesh, std::span<const Vec3> x) {
 class JellyDrop : public ::testing::TestWithParam<ParadigmType> {};
 
 TEST_P(JellyDrop, SettlesIntoItsShapeOnTheGround) {
-  if (GetParam() == ParadigmType::CorotationalFem)
-    GTEST_SKIP() << "not yet (issue 4): the FEM jelly comes to rest 12 % short of its height (0.176 m of "
-                    "0.2 m) for any E and nu, even set down gently, with an unbalanced elastic force of "
-                    "56 N left on an interior axis node; holding ground nodes along the normal in the "
-                    "implicit solve (filtered CG) did not change it. Pinned FEM bodies match theory "
-                    "(FemHangingBarStretchesUnderItsWeight).";
-  GTEST_SKIP() << "not yet (issue 4): at h = 1/50 s shape matching settles 12 % (k = 1) to 24 % (k = 0.5) "
-                  "short of its height: the ground holds only the bottom layer while the shape fit is "
-                  "global, which leaves that layer (M / m_held) h^2 g / k, about 2.4 cm, below its place; "
-                  "PBD's projection ignores the ground and jitters at up to 1 m/s. Next: clusters, or "
-                  "projecting inside the solver's sweeps.";
+  if (GetParam() != ParadigmType::CorotationalFem)
+    GTEST_SKIP() << "not yet (issue 4): at h = 1/50 s shape matching settles 12 % (k = 1) to 24 % (k = 0.5) "
+                    "short of its height: the ground holds only the bottom layer while the shape fit is "
+                    "global, which leaves that layer (M / m_held) h^2 g / k, about 2.4 cm, below its place; "
+                    "PBD's projection ignores the ground and jitters at up to 1 m/s. Next: clusters, or "
+                    "projecting inside the solver's sweeps.";
   World world;
   RigidBodyDesc ground;
   ground.name = "ground";
@@ -166,7 +161,16 @@ TEST_P(JellyDrop, SettlesIntoItsShapeOnTheGround) {
   jelly.paradigm.stiffness = 0.5;
   jelly.paradigm.damping = 0.05;
   const DeformableId id = *world.addDeformable(jelly);
-  for (int step = 0; step < 150; ++step) ASSERT_TRUE(world.step(kStep).ok()) << "step " << step;  // 3 s
+  double highestAfterLanding = 0.0;  // of the lowest node: a rebound must not gain energy
+  bool landed = false;
+  for (int step = 0; step < 150; ++step) {  // 3 s
+    ASSERT_TRUE(world.step(kStep).ok()) << "step " << step;
+    double lowest = 1e9;
+    for (const Vec3& p : world.nodePositions(id)) lowest = std::min(lowest, p.y());
+    landed = landed || lowest < 0.01;
+    if (landed) highestAfterLanding = std::max(highestAfterLanding, lowest);
+  }
+  EXPECT_LT(highestAfterLanding, 0.15);  // below where it was dropped from
   const auto x = world.nodePositions(id);
   double low = 1e9, high = -1e9, speed = 0.0;
   for (const Vec3& p : x) {
@@ -206,6 +210,16 @@ TEST(Paradigms, BadSettingsAreRefused) {
   jelly.paradigm.damping = 0.1;
   jelly.paradigm.iterations = 0;
   EXPECT_EQ(world.addDeformable(jelly).message(), "deformable 'jelly': paradigm iterations must be in [1, 1000], got 0");
+  jelly.paradigm.iterations = 4;
+  jelly.paradigm.type = ParadigmType::CorotationalFem;
+  jelly.paradigm.youngsModulus = -5.0;
+  EXPECT_EQ(world.addDeformable(jelly).message(), "deformable 'jelly': Young's modulus must be positive, got -5 Pa");
+  jelly.paradigm.youngsModulus = 1e5;
+  jelly.paradigm.poissonRatio = 0.5;
+  EXPECT_EQ(world.addDeformable(jelly).message(), "deformable 'jelly': Poisson's ratio must be in [0, 0.5), got 0.5");
+  jelly.paradigm.poissonRatio = 0.3;
+  jelly.mesh = *makeClothGrid({0, 0, 0}, {1, 0, 0}, {0, 0, 1}, 3, 3, 0.1);
+  EXPECT_EQ(world.addDeformable(jelly).message(), "deformable 'jelly': co-rotational FEM needs a tetrahedral mesh");
 }
 
 }  // namespace

@@ -64,6 +64,7 @@ FemBody makeFemBody(int32_t firstNode, std::span<const Vec3> restPositions,
     body.tetrahedra.push_back(tet);
   }
   body.previousStep.assign(restPositions.size(), Vec3::Zero());
+  clearSupports(body);
   return body;
 }
 
@@ -111,39 +112,82 @@ void solveFemVelocities(FemBody& body, NodeArrays& nodes, const Vec3& gravity, d
     b[i] = free(i) ? Vec3(h * (force[i] + nodes.force[first + i] + gravity / nodes.inverseMass[first + i]) + h * h * kv[i])
                    : Vec3::Zero();
 
-  // Conjugate gradients from last step's Δv.
+  // Held nodes, and the normal Δv each must take (see the header).
+  std::vector<Vec3> held(count, Vec3::Zero());
+  std::vector<double> heldChange(count, 0.0);
+  for (int32_t i = 0; i < count; ++i) {
+    const Vec3& n = body.supportNormal[i];
+    if (n.isZero() || !free(i)) continue;
+    const double target = body.supportSpeed[i] - std::max(body.supportGap[i], 0.0) / h;
+    const double freeSpeed = n.dot(nodes.velocity[first + i] + h * gravity);
+    if (freeSpeed >= target) continue;
+    held[i] = n;
+    heldChange[i] = target - n.dot(nodes.velocity[first + i]);
+  }
+  // Filtered conjugate gradients from last step's Δv: S takes out the held normal components.
+  auto filter = [&](std::vector<Vec3>& y) {
+    for (int32_t i = 0; i < count; ++i) y[i] -= held[i].dot(y[i]) * held[i];
+  };
   std::vector<Vec3>& x = body.previousStep;
   for (int32_t i = 0; i < count; ++i)
     if (!free(i)) x[i].setZero();
   std::vector<Vec3> r(count), p, ap;
-  apply(x, ap);
-  double bNorm = 0.0, rr = 0.0;
-  for (int32_t i = 0; i < count; ++i) {
-    r[i] = b[i] - ap[i];
-    rr += r[i].squaredNorm();
-    bNorm += b[i].squaredNorm();
-  }
-  p = r;
+  double bNorm = 0.0;
+  for (const Vec3& bi : b) bNorm += bi.squaredNorm();
   int iteration = 0;
-  for (; iteration < kMaxIterations && rr > kRelativeTolerance * kRelativeTolerance * bNorm; ++iteration) {
-    apply(p, ap);
-    double pap = 0.0;
-    for (int32_t i = 0; i < count; ++i) pap += p[i].dot(ap[i]);
-    if (pap <= 0) break;  // not positive definite: should not happen, stop rather than diverge
-    const double alpha = rr / pap;
-    double next = 0.0;
-    for (int32_t i = 0; i < count; ++i) {
-      x[i] += alpha * p[i];
-      r[i] -= alpha * ap[i];
-      next += r[i].squaredNorm();
+  for (int round = 0; round < 3; ++round) {
+    for (int32_t i = 0; i < count; ++i) x[i] += (heldChange[i] - held[i].dot(x[i])) * held[i];
+    apply(x, ap);
+    for (int32_t i = 0; i < count; ++i) r[i] = b[i] - ap[i];
+    filter(r);
+    double rr = 0.0;
+    for (const Vec3& ri : r) rr += ri.squaredNorm();
+    p = r;
+    for (; iteration < kMaxIterations && rr > kRelativeTolerance * kRelativeTolerance * bNorm; ++iteration) {
+      apply(p, ap);
+      filter(ap);
+      double pap = 0.0;
+      for (int32_t i = 0; i < count; ++i) pap += p[i].dot(ap[i]);
+      if (pap <= 0) break;  // not positive definite: should not happen, stop rather than diverge
+      const double alpha = rr / pap;
+      double next = 0.0;
+      for (int32_t i = 0; i < count; ++i) {
+        x[i] += alpha * p[i];
+        r[i] -= alpha * ap[i];
+        next += r[i].squaredNorm();
+      }
+      const double beta = next / rr;
+      rr = next;
+      for (int32_t i = 0; i < count; ++i) p[i] = r[i] + beta * p[i];
     }
-    const double beta = next / rr;
-    rr = next;
-    for (int32_t i = 0; i < count; ++i) p[i] = r[i] + beta * p[i];
+    // Let go of holds that pull (c = A Δv − b against the normal), and solve again if any did.
+    apply(x, ap);
+    bool released = false;
+    for (int32_t i = 0; i < count; ++i) {
+      if (held[i].isZero() || held[i].dot(ap[i] - b[i]) >= 0) continue;
+      held[i].setZero();
+      heldChange[i] = 0.0;
+      released = true;
+    }
+    if (!released) break;
   }
   body.lastIterations = iteration;
   for (int32_t i = 0; i < count; ++i)
     if (free(i)) nodes.velocity[first + i] += x[i];
+}
+
+void addSupport(FemBody& body, int32_t node, const Vec3& normal, double gap, double normalSpeed) {
+  const int32_t i = node - body.firstNode;
+  if (i < 0 || i >= body.nodeCount || (!body.supportNormal[i].isZero() && body.supportGap[i] <= gap)) return;
+  body.supportNormal[i] = normal;  // the nearest surface wins
+  body.supportGap[i] = gap;
+  body.supportSpeed[i] = normalSpeed;
+}
+
+void clearSupports(FemBody& body) {
+  body.supportNormal.assign(body.nodeCount, Vec3::Zero());
+  body.supportGap.assign(body.nodeCount, 0.0);
+  body.supportSpeed.assign(body.nodeCount, 0.0);
 }
 
 }  // namespace tandem

@@ -14,6 +14,19 @@
 //   (M − h² K) Δv = h (f(x) + f_ext) + h² K v,   v* = v + Δv
 // M − h² K is symmetric positive definite (K is negative semi-definite); conjugate gradients,
 // matrix-free, warm-started from last step's Δv, with pinned nodes held at Δv = 0.
+//
+// The coupling solver's contacts come after this solve, which left to itself relieves a resting
+// body's stress by driving its bottom nodes into the ground (at 1 m/s per step for a 0.2 m
+// jelly; the contacts stop them, the stress stays, the jelly rests 12 % squashed), and at an
+// impact lets the upper layers fall on through a step with nothing resisting (the energy they
+// store launches the jelly higher than it fell). So the solve holds nodes on the static and
+// kinematic surfaces they touched or were about to touch last step: along the surface normal n
+// a held node gets the normal velocity the contact will give it, the surface's w·n less the gap
+// closed in this step,
+//   v*·n = w·n − max(gap, 0) / h,    held only if the free motion would go further,
+// by filtered conjugate gradients (Baraff and Witkin 1998). The hold's impulse is
+// c = (A Δv − b)·n; a hold that would pull (c < 0) is let go and the solve repeated, so bodies
+// still lift off.
 
 
 #pragma once
@@ -40,6 +53,10 @@ struct FemBody {
   double mu = 0.0;      // Pa
   double lambda = 0.0;  // Pa
   std::vector<Vec3> previousStep;  // last step's Δv, the solve's starting guess (local indices)
+  // Surfaces the nodes touched or neared last step (local indices): normal (zero for none), the
+  // gap at the step's end, and the surface's normal velocity.
+  std::vector<Vec3> supportNormal;
+  std::vector<double> supportGap, supportSpeed;
   int lastIterations = 0;          // conjugate-gradient iterations of the last step
 };
 
@@ -53,5 +70,10 @@ void addFemForces(const FemBody& body, NodeArrays& nodes);
 // v ← v + Δv for the body's free nodes, from the implicit solve; gravity and the forces already
 // in `nodes.force` (springs) are its external forces, taken explicitly.
 void solveFemVelocities(FemBody& body, NodeArrays& nodes, const Vec3& gravity, double timeStep);
+
+// Records a static or kinematic surface by a node (global index) for the next solve: its normal,
+// the gap at the step's end and its normal velocity. The caller clears the supports each step.
+void addSupport(FemBody& body, int32_t node, const Vec3& normal, double gap, double normalSpeed);
+void clearSupports(FemBody& body);
 
 }  // namespace tandem
