@@ -199,9 +199,12 @@ struct World::Impl final : bullet::SolverHooks {
     bullet.loadRigidProperties(rigid);
     for (RigidSolverState& body : rigid) body.impulse = body.angularImpulse = Vec3::Zero();
     rows.prepare(nodes, rigid, settings.gravity, h, settings.solver.baumgarte / h, settings.solver.contactSlop);
+    std::vector<NodePairStiffness> elastic;  // h² K_e of the FEM bodies, for their blocks
+    for (const DeformableRecord& body : deformables)
+      if (body.paradigm.type == ParadigmType::CorotationalFem) addFemStiffness(body.fem, nodes, h, elastic);
     for (DirectBlock& block : directBlocks) {
       block.addContacts(rows, settings.solver.contactSlop);
-      block.prepare(rows, nodes, rigid, h);
+      block.prepare(rows, nodes, rigid, h, elastic);
     }
     report.rowCounts = rows.countRows();
   }
@@ -230,18 +233,19 @@ struct World::Impl final : bullet::SolverHooks {
     for (size_t d = 0; d < deformables.size(); ++d) {
       if (root(static_cast<int32_t>(d)) != static_cast<int32_t>(d)) continue;
       std::vector<DirectBlock::NodeRange> ranges;
-      bool forced = false, allowed = true;
+      bool forced = false, allowed = true, elastic = false;
       for (size_t member = 0; member < deformables.size(); ++member) {
         if (root(static_cast<int32_t>(member)) != static_cast<int32_t>(d)) continue;
         const DeformableRecord& record = deformables[member];
         forced |= record.rowSolver == RowSolverKind::Direct;
         allowed &= record.rowSolver != RowSolverKind::Iterative;
+        elastic |= record.paradigm.type == ParadigmType::CorotationalFem;
         ranges.push_back({record.firstNode, record.nodeCount});
       }
       if (!allowed) continue;
       DirectBlock block(std::move(ranges));
       block.collectRows(rows);
-      if (block.scalarRowCount() == 0 || (!forced && block.scalarRowCount() > kAutoDirectRowLimit)) continue;
+      if (!elastic && (block.scalarRowCount() == 0 || (!forced && block.scalarRowCount() > kAutoDirectRowLimit))) continue;
       block.claimRows(rows);
       directBlocks.push_back(std::move(block));
     }

@@ -176,6 +176,33 @@ void solveFemVelocities(FemBody& body, NodeArrays& nodes, const Vec3& gravity, d
     if (free(i)) nodes.velocity[first + i] += x[i];
 }
 
+void addFemStiffness(const FemBody& body, const NodeArrays& nodes, double h, std::vector<NodePairStiffness>& out) {
+  for (const FemTetrahedron& tet : body.tetrahedra) {
+    Mat3 r;
+    firstPiolaStress(body, tet, nodes.position, r);
+    std::array<std::array<Mat3, 4>, 4> block;  // block[a][b]: −h² ∂f_a / ∂x_b
+    for (auto& row : block) row.fill(Mat3::Zero());
+    for (int b = 0; b < 4; ++b)
+      for (int c = 0; c < 3; ++c) {
+        Mat3 ds = Mat3::Zero();  // δD_s for a unit move of node b along axis c
+        for (int k = 0; k < 3; ++k)
+          if (b == 0)
+            ds(c, k) = -1.0;
+          else if (b == k + 1)
+            ds(c, k) = 1.0;
+        const Mat3 rotated = r.transpose() * ds * tet.restInverse;
+        const Mat3 forces = -tet.volume * r * stress(0.5 * (rotated + rotated.transpose()), body.mu, body.lambda) *
+                            tet.restInverse.transpose();
+        for (int k = 0; k < 3; ++k) {
+          block[k + 1][b].col(c) = -h * h * forces.col(k);
+          block[0][b].col(c) += h * h * forces.col(k);
+        }
+      }
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b) out.push_back({tet.node[a], tet.node[b], block[a][b]});
+  }
+}
+
 void addSupport(FemBody& body, int32_t node, const Vec3& normal, double gap, double normalSpeed) {
   const int32_t i = node - body.firstNode;
   if (i < 0 || i >= body.nodeCount || (!body.supportNormal[i].isZero() && body.supportGap[i] <= gap)) return;

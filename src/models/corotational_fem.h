@@ -71,6 +71,10 @@ void addFemForces(const FemBody& body, NodeArrays& nodes);
 // in `nodes.force` (springs) are its external forces, taken explicitly.
 void solveFemVelocities(FemBody& body, NodeArrays& nodes, const Vec3& gravity, double timeStep);
 
+// −h² K at the current positions, as 3×3 node-pair blocks (global indices), for the direct block
+// that solves the body's contacts and attachments with the same implicit response.
+void addFemStiffness(const FemBody& body, const NodeArrays& nodes, double timeStep, std::vector<NodePairStiffness>& out);
+
 // Records a static or kinematic surface by a node (global index) for the next solve: its normal,
 // the gap at the step's end and its normal velocity. The caller clears the supports each step.
 void addSupport(FemBody& body, int32_t node, const Vec3& normal, double gap, double normalSpeed);

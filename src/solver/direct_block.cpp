@@ -100,7 +100,8 @@ void DirectBlock::claimRows(ConstraintRows& rows) const {
 }
 
 void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
-                          std::span<const RigidSolverState> rigid, double timeStep) {
+                          std::span<const RigidSolverState> rigid, double timeStep,
+                          std::span<const NodePairStiffness> elastic) {
   // Degrees of freedom: free nodes, then dynamic awake bodies.
   m_nodeDof.assign(m_nodeCount, -1);
   m_dofCount = 0;
@@ -124,7 +125,7 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
   std::vector<Eigen::Triplet<double>> entries;
   entries.reserve(static_cast<size_t>(m_dofCount) * 3 + static_cast<size_t>(rowCount) * 16);
 
-  // H = M + h² K_g
+  // H = M + h² K_g + h² K_e
   for (int32_t n = 0; n < m_nodeCount; ++n) {
     if (m_nodeDof[n] < 0) continue;
     const double mass = 1.0 / nodes.inverseMass[globalNode(n)];
@@ -140,7 +141,12 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
       for (int32_t c = 0; c < 3; ++c) entries.emplace_back(dof + 3 + r, dof + 3 + c, inertia(r, c));
     }
   }
-  m_stiffness.clear();
+  std::vector<Eigen::Triplet<double>> stiffnessEntries;
+  auto addStiffness = [&](int32_t dofA, int32_t dofB, const Mat3& k) {
+    if (dofA < 0 || dofB < 0) return;
+    for (int32_t r = 0; r < 3; ++r)
+      for (int32_t c = 0; c < 3; ++c) stiffnessEntries.emplace_back(dofA + r, dofB + c, k(r, c));
+  };
   // Every edge gets its entries, zero when slack, so the sparsity pattern stays the same from
   // step to step and the ordering and symbolic analysis are done once.
   for (const BlockRowRef& ref : m_rows) {
@@ -156,15 +162,16 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
     const double stiffness = std::min(timeStep * -row.lambda / row.restLength, kMaxStiffnessToMass * lighter);
     const Mat3 g = taut ? Mat3(stiffness * (Mat3::Identity() - n * n.transpose())) : Mat3::Zero();
     const std::array<int32_t, 2> dof{nodeDof(row.node[0]), nodeDof(row.node[1])};
-    if (taut) m_stiffness.push_back({dof[0], dof[1], g});
     for (int a = 0; a < 2; ++a)
-      for (int b = 0; b < 2; ++b) {
-        if (dof[a] < 0 || dof[b] < 0) continue;
-        const double sign = a == b ? 1.0 : -1.0;
-        for (int32_t r = 0; r < 3; ++r)
-          for (int32_t c = 0; c < 3; ++c) entries.emplace_back(dof[a] + r, dof[b] + c, sign * g(r, c));
-      }
+      for (int b = 0; b < 2; ++b) addStiffness(dof[a], dof[b], a == b ? g : Mat3(-g));
   }
+  for (const NodePairStiffness& pair : elastic) {
+    const int32_t a = localNode(pair.nodeA), b = localNode(pair.nodeB);
+    if (a >= 0 && b >= 0) addStiffness(m_nodeDof[a], m_nodeDof[b], pair.k);
+  }
+  m_stiffness.resize(m_dofCount, m_dofCount);
+  m_stiffness.setFromTriplets(stiffnessEntries.begin(), stiffnessEntries.end());
+  entries.insert(entries.end(), stiffnessEntries.begin(), stiffnessEntries.end());
 
   // J and Jᵀ, and the compliance −E. Row r of the KKT system is m_dofCount + r.
   std::vector<Eigen::Triplet<double>> transposed;
@@ -387,19 +394,11 @@ void DirectBlock::solve(ConstraintRows& rows, SolverContext& ctx, SweepStats& st
   for (int32_t r = 0; r < rowCount; ++r)
     if (m_released[r]) m_solution[m_dofCount + r] = releasedHere[r] ? -prescribed[r] : 0.0;
 
-  // Velocities from the impulses, M Δv = Jᵀ Δλ − h² K_g Δv, with Δv in the stiffness term taken
-  // from the solve: the stiffness forces cancel in pairs, so momentum changes by exactly Jᵀ Δλ
-  // whatever the solve's rounding.
+  // Velocities from the impulses, M Δv = Jᵀ Δλ − h² (K_g + K_e) Δv, with Δv in the stiffness
+  // term taken from the solve: the stiffness forces cancel within each edge and element, so
+  // momentum changes by exactly Jᵀ Δλ whatever the solve's rounding.
   const auto deltaLambda = -m_solution.tail(rowCount);
-  const auto solvedVelocity = m_solution.head(m_dofCount);
-  m_impulse = m_jacobianT * deltaLambda;
-  for (const EdgeStiffness& edge : m_stiffness) {
-    const Vec3 a = edge.dofA >= 0 ? Vec3(solvedVelocity.segment<3>(edge.dofA)) : Vec3::Zero();  // pinned: 0
-    const Vec3 b = edge.dofB >= 0 ? Vec3(solvedVelocity.segment<3>(edge.dofB)) : Vec3::Zero();
-    const Vec3 force = edge.g * (a - b);
-    if (edge.dofA >= 0) m_impulse.segment<3>(edge.dofA) -= force;
-    if (edge.dofB >= 0) m_impulse.segment<3>(edge.dofB) += force;
-  }
+  m_impulse = m_jacobianT * deltaLambda - m_stiffness * m_solution.head(m_dofCount);
   for (int32_t n = 0; n < m_nodeCount; ++n)
     if (m_nodeDof[n] >= 0)
       ctx.velocity[globalNode(n)] += m_inverseMass[m_nodeDof[n]] * m_impulse.segment<3>(m_nodeDof[n]);

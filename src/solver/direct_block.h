@@ -14,7 +14,7 @@
 // free node, six per dynamic rigid body the group is anchored to) and mass matrix M
 // (m I per node; m I and the world inertia per rigid body), each sweep solves
 //
-//   [ H   Jᵀ ] [ Δv ]   [     0      ]       H = M + h² K_g
+//   [ H   Jᵀ ] [ Δv ]   [     0      ]       H = M + h² K_g + h² K_e
 //   [ J  −E  ] [ −Δλ] = [ −(J v + b) ]       E = ε diag(J M⁻¹ Jᵀ), a tiny compliance that
 //                                              keeps redundant rows solvable
 //
@@ -28,8 +28,15 @@
 // forces under sideways motion, h² K_g = h |λ| / L (I − n nᵀ) per taut edge (λ from the last
 // step), coupling the edge's two nodes as [G −G; −G G]. Its columns sum to zero, so internal
 // rows still conserve momentum exactly; edges in compression get none (theirs is negative).
-// Velocities are set from M Δv = Jᵀ Δλ − h² K_g Δv after the solve, so momentum is exact to
-// rounding whatever the solve's own residual.
+//
+// Elastic stiffness. An FEM body's v* comes from the implicit solve (M − h² K) Δv = …, so an
+// impulse on it moves its nodes by (M − h² K)⁻¹ Jᵀ Δλ, not by M⁻¹ Jᵀ Δλ: a box set on a jelly is
+// held by the whole jelly at once, not by the few light nodes under it. h² K_e = −h² K (from
+// the FEM model, the same rotations as its solve) enters H; an FEM body always has a block, so
+// its contacts join it. Its columns sum to zero too.
+//
+// Velocities are set from M Δv = Jᵀ Δλ − h² (K_g + K_e) Δv after the solve, so momentum is exact
+// to rounding whatever the solve's own residual.
 //
 // The KKT matrix is symmetric quasi-definite, so a sparse LDLᵀ without pivoting (AMD ordering)
 // factorises it once per step; each sweep is one pair of triangular solves. Rows with bounds
@@ -79,8 +86,9 @@ class DirectBlock {
 
   // Assembles and factorises the KKT matrix for this step. Rows must be prepared first;
   // their λ still hold the last step's impulses (for the geometric stiffness).
+  // `elastic` is h² K_e, pairs on nodes outside the block ignored.
   void prepare(const ConstraintRows& rows, const NodeArrays& nodes, std::span<const RigidSolverState> rigid,
-               double timeStep);
+               double timeStep, std::span<const NodePairStiffness> elastic);
 
   // Starts the block's rows from zero impulse for this step (after prepare has read λ).
   void clearImpulses(ConstraintRows& rows) const;
@@ -117,11 +125,7 @@ class DirectBlock {
   SparseMatrix m_jacobianT;         // Jᵀ: dofs × rows
   Eigen::VectorXd m_inverseMass;    // per degree of freedom (linear ones; nodes and bodies)
   std::vector<Mat3> m_bodyInverseInertia;
-  struct EdgeStiffness {
-    int32_t dofA, dofB;  // −1 for a pinned node
-    Mat3 g;              // h² K_g of the edge
-  };
-  std::vector<EdgeStiffness> m_stiffness;  // taut edges this step
+  SparseMatrix m_stiffness;         // h² (K_g + K_e): dofs × dofs
   std::vector<Eigen::Triplet<double>> m_entries;  // the KKT matrix, kept to release contacts
   std::vector<std::pair<size_t, size_t>> m_rowEntries;  // each row's entries; its diagonal last
   std::vector<bool> m_released;  // contacts let go this step

@@ -46,6 +46,14 @@ struct RigidSolverState {
   }
 };
 
+// A 3×3 block of stiffness between two nodes (global indices), as a direct block adds it to its
+// H: the block (a, b) gets k. An elastic model hands over every (a, b) pair of its elements.
+struct NodePairStiffness {
+  int32_t nodeA = 0;
+  int32_t nodeB = 0;
+  Mat3 k = Mat3::Zero();
+};
+
 struct SolverContext {
   std::span<Vec3> velocity;
   std::span<const double> inverseMass;
