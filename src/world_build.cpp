@@ -281,6 +281,14 @@ Status World::setNodeVelocity(DeformableId body, int32_t node, const Vec3& veloc
   return {};
 }
 
+Status World::setNodePosition(DeformableId body, int32_t node, const Vec3& position) {
+  Result<int32_t> n = m_impl->globalNode(body, node, "set node position");
+  if (!n) return n.status();
+  if (!position.allFinite()) return Error{"set node position: position is not finite"};
+  m_impl->nodes.position[*n] = position;
+  return {};
+}
+
 Status World::fixNode(DeformableId body, int32_t node) {
   Result<int32_t> n = m_impl->globalNode(body, node, "fix node");
   if (!n) return n.status();

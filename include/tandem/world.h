@@ -273,6 +273,8 @@ class World {
   std::span<const double> nodeInverseMasses(DeformableId body) const;
   const DeformableMesh& restMesh(DeformableId body) const;  // the mesh as added
   Status setNodeVelocity(DeformableId body, int32_t node, const Vec3& velocity);
+  // Moves a node (a teleport: no velocity, no collision on the way); its rest shape is unchanged.
+  Status setNodePosition(DeformableId body, int32_t node, const Vec3& position);
   // Pins a node where it is: its inverse mass becomes zero.
   Status fixNode(DeformableId body, int32_t node);
 
