@@ -209,6 +209,51 @@ void BM_DirectCloth(benchmark::State& state) {
 }
 BENCHMARK(BM_DirectCloth)->Arg(11)->Arg(21)->Arg(31)->Unit(benchmark::kMillisecond);
 
+// One step of a 430-node jelly cylinder (3 rings, 14 sectors, 9 layers; 0.1 m by 0.2 m,
+// 0.5 kg) resting on the ground at h = 1/50 s, for each paradigm. Mass-spring is explicit:
+// stable only while the springs on a node (about 16) sum to less than m / h^2, so they are that
+// soft (jelly stiffness needs FEM).
+void BM_JellyParadigm(benchmark::State& state, ParadigmType type, bool plate) {
+  constexpr double kJellyStep = 1.0 / 50.0;
+  World world;
+  RigidBodyDesc ground;
+  ground.name = "ground";
+  ground.shape = RigidShape::plane({0, 1, 0}, 0.0);
+  ground.motion = MotionType::Static;
+  check(world.addRigidBody(ground).status());
+  DeformableDesc jelly;
+  jelly.name = "jelly";
+  jelly.mesh = *makeTetCylinder({0, 0.005, 0}, 0.1, 0.2, 3, 14, 9, 0.5);
+  jelly.paradigm.type = type;
+  jelly.paradigm.stiffness = 0.5;
+  jelly.paradigm.damping = 0.05;
+  if (type == ParadigmType::MassSpring) {
+    jelly.springs.stiffness = 0.05 * 0.5 / jelly.mesh.nodeCount() / (kJellyStep * kJellyStep);  // ~16 edges a node
+    jelly.damping = 1.0;  // 1/s, relative to the mean velocity (spring damping is explicit too)
+  }
+  check(world.addDeformable(jelly).status());
+  if (plate) {  // 2 kg, resting on the jelly: its contacts and the ground's join the FEM block
+    RigidBodyDesc box;
+    box.name = "plate";
+    box.shape = RigidShape::box({0.15, 0.02, 0.15});
+    box.mass = 2.0;
+    box.position = Vec3(0, 0.005 + 0.2 + 0.005 + 0.02, 0);
+    box.canSleep = false;
+    check(world.addRigidBody(box).status());
+  }
+  for (int step = 0; step < 50; ++step) check(world.step(kJellyStep));
+  for (auto _ : state) check(world.step(kJellyStep));
+  reportStep(state, world);
+  state.counters["nodes"] = jelly.mesh.nodeCount();
+  state.counters["models_ms"] = 1e3 * world.lastReport().seconds(Stage::Models);
+}
+BENCHMARK_CAPTURE(BM_JellyParadigm, MassSpring, ParadigmType::MassSpring, false)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_JellyParadigm, ShapeMatching, ParadigmType::ShapeMatching, false)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_JellyParadigm, PositionBased, ParadigmType::PositionBased, false)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_JellyParadigm, CorotationalFem, ParadigmType::CorotationalFem, false)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_JellyParadigm, CorotationalFemUnderPlate, ParadigmType::CorotationalFem, true)
+    ->Unit(benchmark::kMillisecond);
+
 const bool kRegistered = [] {
   for (const BuiltinScene& scene : builtinScenes())
     benchmark::RegisterBenchmark(("BM_BuiltinScene/" + std::string(scene.name)).c_str(), BM_BuiltinScene,

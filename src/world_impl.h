@@ -199,13 +199,16 @@ struct World::Impl final : bullet::SolverHooks {
     bullet.loadRigidProperties(rigid);
     for (RigidSolverState& body : rigid) body.impulse = body.angularImpulse = Vec3::Zero();
     rows.prepare(nodes, rigid, settings.gravity, h, settings.solver.baumgarte / h, settings.solver.contactSlop);
-    std::vector<NodePairStiffness> elastic;  // h² K_e of the FEM bodies, for their blocks
-    for (const DeformableRecord& body : deformables)
-      if (body.paradigm.type == ParadigmType::CorotationalFem) addFemStiffness(body.fem, nodes, h, elastic);
+    bool anyRows = false;
     for (DirectBlock& block : directBlocks) {
-      block.addContacts(rows, settings.solver.contactSlop);
-      block.prepare(rows, nodes, rigid, h, elastic);
+      block.addContacts(rows, rigid, settings.solver.contactSlop);
+      anyRows |= block.scalarRowCount() > 0;
     }
+    std::vector<NodePairStiffness> elastic;  // h² K_e of the FEM bodies, for their blocks
+    if (anyRows)
+      for (const DeformableRecord& body : deformables)
+        if (body.paradigm.type == ParadigmType::CorotationalFem) addFemStiffness(body.fem, nodes, h, elastic);
+    for (DirectBlock& block : directBlocks) block.prepare(rows, nodes, rigid, h, elastic);
     report.rowCounts = rows.countRows();
   }
 

@@ -65,25 +65,34 @@ void DirectBlock::collectRows(const ConstraintRows& rows) {
   m_persistentBodies = m_bodies.size();
 }
 
-void DirectBlock::addContacts(ConstraintRows& rows, double slop) {
+void DirectBlock::addContacts(ConstraintRows& rows, std::span<const RigidSolverState> rigid, double slop) {
   m_rows.resize(m_persistentRows);
   m_bodies.resize(m_persistentBodies);
-  for (size_t i = 0; i < rows.contacts.size(); ++i) {
-    ContactRow& row = rows.contacts[i];
-    // Contacts with rigid bodies only: two surfaces of deformables (or one folded on itself)
-    // can be pressed into shapes their own rows do not allow, an infeasible set for a direct
-    // solve; the PGS sweep handles those, with the last word in each iteration.
-    // Touching, or pushing last step (its warm-start impulse): hysteresis, so a resting contact
-    // whose gap hovers around the slop does not flip between the block and the sweep.
+  // Contacts with rigid bodies only: two surfaces of deformables (or one folded on itself)
+  // can be pressed into shapes their own rows do not allow, an infeasible set for a direct
+  // solve; the PGS sweep handles those, with the last word in each iteration.
+  // Touching, or pushing last step (its warm-start impulse): hysteresis, so a resting contact
+  // whose gap hovers around the slop does not flip between the block and the sweep.
+  auto joins = [&](const ContactRow& row) {
     const bool touching = row.gap <= slop || row.lambdaNormal > 0.0;
-    if (row.body < 0 || !touching || row.normalMass == 0.0) continue;
+    if (row.body < 0 || !touching || row.normalMass == 0.0) return false;
     bool owned = true;
     for (int k = 0; k < 4; ++k) owned &= row.coefficient[k] == 0.0 || localNode(row.node[k]) >= 0;
-    if (!owned) continue;
+    return owned;
+  };
+  // A block with no rows of its own (an FEM body alone) takes its contacts only while a dynamic
+  // body rests on it: the FEM solve already holds its nodes on still surfaces, and the block
+  // then costs nothing.
+  if (m_persistentRows == 0 && std::none_of(rows.contacts.begin(), rows.contacts.end(), [&](const ContactRow& row) {
+        return joins(row) && rigid[row.body].inverseMass > 0.0;
+      }))
+    return;
+  for (size_t i = 0; i < rows.contacts.size(); ++i) {
+    ContactRow& row = rows.contacts[i];
+    if (!joins(row)) continue;
     row.inDirectBlock = true;
     row.lambdaNormal = 0.0;
-    if (row.body >= 0 && std::find(m_bodies.begin(), m_bodies.end(), row.body) == m_bodies.end())
-      m_bodies.push_back(row.body);
+    if (std::find(m_bodies.begin(), m_bodies.end(), row.body) == m_bodies.end()) m_bodies.push_back(row.body);
     m_rows.push_back({RowType::Contact, static_cast<int32_t>(i), 0});
   }
 }
@@ -102,6 +111,8 @@ void DirectBlock::claimRows(ConstraintRows& rows) const {
 void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
                           std::span<const RigidSolverState> rigid, double timeStep,
                           std::span<const NodePairStiffness> elastic) {
+  m_factorOk = false;
+  if (m_rows.empty()) return;  // nothing to solve this step
   // Degrees of freedom: free nodes, then dynamic awake bodies.
   m_nodeDof.assign(m_nodeCount, -1);
   m_dofCount = 0;

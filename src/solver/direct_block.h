@@ -81,7 +81,7 @@ class DirectBlock {
   // as equality rows, so a heavy body resting on a light cloth is held by the whole cloth in
   // one solve; a contact that would pull is let go (and the block solved again without it). Call after the rows are
   // prepared, before prepare().
-  void addContacts(ConstraintRows& rows, double slop);
+  void addContacts(ConstraintRows& rows, std::span<const RigidSolverState> rigid, double slop);
   int scalarRowCount() const { return static_cast<int>(m_rows.size()); }
 
   // Assembles and factorises the KKT matrix for this step. Rows must be prepared first;
