@@ -165,6 +165,38 @@ TEST(Paradigms, FemCompressedBarReturnsToRestLength) {
 
 double minimumTetVolume(const DeformableMesh& mesh, std::span<const Vec3> x);
 
+// Jelly-like stiffness from 10 to 100 kPa at h = 1/50 s: dropped, the FEM jelly comes to rest
+// at its height less its sag under its own weight, ρ g H² / 2E (1.6 mm at 10 kPa).
+TEST(Paradigms, FemJellyDropIsStableFrom10To100kPa) {
+  const double height = 0.2, mass = 0.5, radius = 0.1;
+  const double density = mass / (4 * radius * radius * std::sin(M_PI / 4) * height);
+  for (double youngs : {10e3, 30e3, 100e3}) {
+    World world;
+    RigidBodyDesc ground;
+    ground.name = "ground";
+    ground.shape = RigidShape::plane({0, 1, 0}, 0.0);
+    ground.motion = MotionType::Static;
+    ASSERT_TRUE(world.addRigidBody(ground).ok());
+    DeformableDesc jelly;
+    jelly.name = "jelly";
+    jelly.mesh = *makeTetCylinder({0, 0.15, 0}, radius, height, 2, 8, 3, mass);
+    jelly.paradigm.type = ParadigmType::CorotationalFem;
+    jelly.paradigm.youngsModulus = youngs;
+    const DeformableId id = *world.addDeformable(jelly);
+    for (int step = 0; step < 150; ++step) ASSERT_TRUE(world.step(kStep).ok()) << "E " << youngs << " step " << step;
+    double low = 1e9, high = -1e9, speed = 0.0;
+    for (const Vec3& p : world.nodePositions(id)) {
+      low = std::min(low, p.y());
+      high = std::max(high, p.y());
+    }
+    for (const Vec3& v : world.nodeVelocities(id)) speed = std::max(speed, v.norm());
+    const double sag = density * 9.81 * height * height / (2 * youngs);
+    EXPECT_NEAR(high - low, height - sag, 0.15 * sag + 1e-4) << "E " << youngs;
+    EXPECT_LT(speed, 1e-3) << "E " << youngs;
+    EXPECT_GT(minimumTetVolume(world.restMesh(id), world.nodePositions(id)), 0.0) << "E " << youngs;
+  }
+}
+
 double meshVolume(const DeformableMesh& mesh, std::span<const Vec3> x) {
   double sixVolume = 0.0;
   for (const auto& t : mesh.tetrahedra)
