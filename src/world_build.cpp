@@ -219,10 +219,12 @@ Result<DeformableId> World::addDeformable(const DeformableDesc& desc) {
     w.nodes.force.push_back(Vec3::Zero());
     w.nodes.inverseMass.push_back(1.0 / mesh.masses[i]);
   }
+  std::vector<EdgeSpring> implicitSprings;
   auto addEdge = [&](const std::array<int32_t, 2>& e, bool inextensible) {
     const double restLength = (mesh.positions[e[1]] - mesh.positions[e[0]]).norm();
     if (springs.stiffness > 0 || springs.damping > 0)
-      w.springs.push_back({first + e[0], first + e[1], restLength, springs.stiffness, springs.damping});
+      (springs.implicit ? implicitSprings : w.springs)
+          .push_back({first + e[0], first + e[1], restLength, springs.stiffness, springs.damping});
     if (!inextensible) return;
     InextensibilityRow row;
     row.node = {first + e[0], first + e[1]};
@@ -248,9 +250,15 @@ Result<DeformableId> World::addDeformable(const DeformableDesc& desc) {
     }
   }
   DeformableRecord record{desc.name, first, mesh.nodeCount(), mesh, desc.rowSolver, desc.collision, desc.paradigm,
-                          desc.damping, {}, {}, {}, {}, {}};
+                          desc.damping, {}, {}, {}, {}, false, {}};
+  // FEM bodies and implicit springs are stepped by the implicit solve; springs on a
+  // position-based body are too.
+  FemElements fem;
   if (desc.paradigm.type == ParadigmType::CorotationalFem)
-    record.fem = makeFemBody(first, mesh.positions, mesh.tetrahedra, desc.paradigm.youngsModulus, desc.paradigm.poissonRatio);
+    fem = makeFemElements(first, mesh.positions, mesh.tetrahedra, desc.paradigm.youngsModulus, desc.paradigm.poissonRatio);
+  record.implicitStep = !fem.tetrahedra.empty() || !implicitSprings.empty();
+  if (record.implicitStep)
+    record.implicit = makeImplicitBody(first, mesh.nodeCount(), std::move(fem), std::move(implicitSprings));
   record.paradigmEdges = mesh.edges;
   record.paradigmEdges.insert(record.paradigmEdges.end(), mesh.shearEdges.begin(), mesh.shearEdges.end());
   // The collision surface: its triangles, and the nodes on them (every node when it has none).

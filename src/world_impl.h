@@ -7,7 +7,7 @@
 #include "bullet/bullet_world.h"
 #include "collision/contact_detection.h"
 #include "format.h"
-#include "models/corotational_fem.h"
+#include "models/implicit_solve.h"
 #include "models/mass_spring.h"
 #include "models/position_based.h"
 #include "solver/constraint_rows.h"
@@ -40,7 +40,8 @@ struct DeformableRecord {
   std::vector<std::array<int32_t, 3>> surfaceTriangles;    // global indices
   std::vector<std::array<int32_t, 2>> surfaceEdges;        // global indices
   std::vector<std::array<int32_t, 2>> paradigmEdges;       // local: edges and shear edges
-  FemBody fem;                                             // co-rotational FEM bodies only
+  bool implicitStep = false;  // FEM, or mass-spring with implicit springs: stepped by `implicit`
+  ImplicitBody implicit;
 };
 
 class StageClock {
@@ -93,8 +94,8 @@ struct World::Impl final : bullet::SolverHooks {
     for (Vec3& f : nodes.force) f.setZero();
     addSpringForces(springs, nodes);
     for (DeformableRecord& body : deformables) {
-      if (body.paradigm.type == ParadigmType::CorotationalFem) {
-        solveFemVelocities(body.fem, nodes, settings.gravity, h);  // implicit; gravity included
+      if (body.implicitStep) {
+        solveImplicitVelocities(body.implicit, nodes, settings.gravity, h);  // gravity included
       } else {
         for (int32_t i = body.firstNode; i < body.firstNode + body.nodeCount; ++i)
           if (nodes.inverseMass[i] != 0.0)
@@ -169,19 +170,19 @@ struct World::Impl final : bullet::SolverHooks {
     previousContacts.clear();
     for (const ContactRow& row : rows.contacts)
       previousContacts[row.key] = {row.lambdaNormal, row.impulse() - row.lambdaNormal * row.normal};
-    rememberFemSupports();
+    rememberImplicitSupports();
   }
 
-  // The static and kinematic surfaces FEM nodes touched or neared, with the gap left at the
-  // step's end, for the next step's FEM solve (see models/corotational_fem.h).
-  void rememberFemSupports() {
-    std::vector<FemBody*> fem;
+  // The static and kinematic surfaces implicit bodies' nodes touched or neared, with the gap left at the
+  // step's end, for the next step's implicit solve (see models/implicit_solve.h).
+  void rememberImplicitSupports() {
+    std::vector<ImplicitBody*> implicitBodies;
     for (DeformableRecord& body : deformables) {
-      if (body.paradigm.type != ParadigmType::CorotationalFem) continue;
-      clearSupports(body.fem);
-      fem.push_back(&body.fem);
+      if (!body.implicitStep) continue;
+      clearSupports(body.implicit);
+      implicitBodies.push_back(&body.implicit);
     }
-    if (fem.empty()) return;
+    if (implicitBodies.empty()) return;
     const SolverContext ctx = context();
     for (const ContactRow& row : rows.contacts) {
       const bool nodeOnStill = row.body >= 0 && rigid[row.body].inverseMass == 0.0 && row.coefficient[0] == 1.0 &&
@@ -189,7 +190,7 @@ struct World::Impl final : bullet::SolverHooks {
       if (!nodeOnStill) continue;
       const double surfaceSpeed = row.normal.dot(rigid[row.body].velocityAt(row.offset));
       const double gapAtEnd = row.gap + timeStep * row.normal.dot(contactRelativeVelocity(row, ctx));
-      for (FemBody* body : fem) addSupport(*body, row.node[0], row.normal, gapAtEnd, surfaceSpeed);
+      for (ImplicitBody* body : implicitBodies) addSupport(*body, row.node[0], row.normal, gapAtEnd, surfaceSpeed);
     }
   }
 
@@ -204,10 +205,10 @@ struct World::Impl final : bullet::SolverHooks {
       block.addContacts(rows, rigid, settings.solver.contactSlop);
       anyRows |= block.scalarRowCount() > 0;
     }
-    std::vector<NodePairStiffness> elastic;  // h² K_e of the FEM bodies, for their blocks
+    std::vector<NodePairStiffness> elastic;  // h D + h² K_e of the implicit bodies, for their blocks
     if (anyRows)
       for (const DeformableRecord& body : deformables)
-        if (body.paradigm.type == ParadigmType::CorotationalFem) addFemStiffness(body.fem, nodes, h, elastic);
+        if (body.implicitStep) addImplicitStiffness(body.implicit, nodes, h, elastic);
     for (DirectBlock& block : directBlocks) block.prepare(rows, nodes, rigid, h, elastic);
     report.rowCounts = rows.countRows();
   }
@@ -242,7 +243,7 @@ struct World::Impl final : bullet::SolverHooks {
         const DeformableRecord& record = deformables[member];
         forced |= record.rowSolver == RowSolverKind::Direct;
         allowed &= record.rowSolver != RowSolverKind::Iterative;
-        elastic |= record.paradigm.type == ParadigmType::CorotationalFem;
+        elastic |= record.implicitStep;
         ranges.push_back({record.firstNode, record.nodeCount});
       }
       if (!allowed) continue;

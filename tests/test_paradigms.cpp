@@ -69,7 +69,7 @@ TEST(Paradigms, RigidMotionGivesNoSpringForce) {
 
 TEST(Paradigms, RigidMotionGivesNoFemForce) {
   const DeformableMesh mesh = jellyMesh();
-  const FemBody body = makeFemBody(0, mesh.positions, mesh.tetrahedra, 50e3, 0.3);
+  const FemElements elements = makeFemElements(0, mesh.positions, mesh.tetrahedra, 50e3, 0.3);
   std::mt19937 rng(7);
   for (int trial = 0; trial < 10; ++trial) {
     Mat3 rotation;
@@ -77,7 +77,7 @@ TEST(Paradigms, RigidMotionGivesNoFemForce) {
     NodeArrays nodes;
     nodes.position = movedRigidly(mesh.positions, rng, rotation, translation);
     nodes.force.assign(mesh.positions.size(), Vec3::Zero());
-    addFemForces(body, nodes);
+    addFemForces(elements, nodes.position, nodes.force, 0);
     for (const Vec3& f : nodes.force) EXPECT_LT(f.norm(), 1e-9 * 50e3 * 0.1 * 0.1);  // against E times an area
   }
 }
@@ -87,12 +87,12 @@ TEST(Paradigms, RigidMotionGivesNoFemForce) {
 TEST(Paradigms, FemStretchedBarPullsWithYoungsModulusTimesStrain) {
   const double youngs = 50e3, length = 1.0, side = 0.1, strain = 0.01;
   const DeformableMesh mesh = *makeTetBox({0, 0, 0}, {length, side, side}, 10, 1, 1, 1.0);
-  const FemBody body = makeFemBody(0, mesh.positions, mesh.tetrahedra, youngs, 0.0);
+  const FemElements elements = makeFemElements(0, mesh.positions, mesh.tetrahedra, youngs, 0.0);
   const Mat3 turn = Eigen::AngleAxisd(0.8, Vec3(1, 2, 3).normalized()).toRotationMatrix();
   NodeArrays nodes;
   for (const Vec3& x : mesh.positions) nodes.position.push_back(turn * Vec3((1 + strain) * x.x(), x.y(), x.z()));
   nodes.force.assign(mesh.positions.size(), Vec3::Zero());
-  addFemForces(body, nodes);
+  addFemForces(elements, nodes.position, nodes.force, 0);
   Vec3 farEnd = Vec3::Zero();
   for (int32_t i = 0; i < mesh.nodeCount(); ++i) {
     const Vec3 local = turn.transpose() * nodes.force[i];
@@ -309,7 +309,7 @@ double minimumTetVolume(const DeformableMesh& mesh, std::span<const Vec3> x) {
 class JellyDrop : public ::testing::TestWithParam<ParadigmType> {};
 
 TEST_P(JellyDrop, SettlesIntoItsShapeOnTheGround) {
-  if (GetParam() != ParadigmType::CorotationalFem)
+  if (GetParam() == ParadigmType::ShapeMatching || GetParam() == ParadigmType::PositionBased)
     GTEST_SKIP() << "not yet (issue 4): at h = 1/50 s shape matching settles 12 % (k = 1) to 24 % (k = 0.5) "
                     "short of its height: the ground holds only the bottom layer while the shape fit is "
                     "global, which leaves that layer (M / m_held) h^2 g / k, about 2.4 cm, below its place; "
@@ -327,6 +327,10 @@ TEST_P(JellyDrop, SettlesIntoItsShapeOnTheGround) {
   jelly.paradigm.type = GetParam();
   jelly.paradigm.stiffness = 0.5;
   jelly.paradigm.damping = 0.05;
+  if (GetParam() == ParadigmType::MassSpring) {  // about E L for 50 kPa; implicit springs
+    jelly.springs.stiffness = 2000.0;
+    jelly.springs.damping = 1.0;
+  }
   const DeformableId id = *world.addDeformable(jelly);
   double highestAfterLanding = 0.0;  // of the lowest node: a rebound must not gain energy
   bool landed = false;
@@ -353,10 +357,11 @@ TEST_P(JellyDrop, SettlesIntoItsShapeOnTheGround) {
   EXPECT_GT(minimumTetVolume(world.restMesh(id), x), 0.0);  // no tet turned inside out
 }
 
-INSTANTIATE_TEST_SUITE_P(Paradigms, JellyDrop, ::testing::Values(ParadigmType::ShapeMatching, ParadigmType::PositionBased,
-                                                             ParadigmType::CorotationalFem),
+INSTANTIATE_TEST_SUITE_P(Paradigms, JellyDrop, ::testing::Values(ParadigmType::MassSpring, ParadigmType::ShapeMatching,
+                                                             ParadigmType::PositionBased, ParadigmType::CorotationalFem),
                          [](const ::testing::TestParamInfo<ParadigmType>& param) {
                            switch (param.param) {
+                             case ParadigmType::MassSpring: return std::string("MassSpring");
                              case ParadigmType::ShapeMatching: return std::string("ShapeMatching");
                              case ParadigmType::PositionBased: return std::string("PositionBased");
                              default: return std::string("CorotationalFem");

@@ -144,6 +144,9 @@ struct BendingSettings {
 struct MassSpringSettings {
   double stiffness = 0.0;  // N/m per edge spring
   double damping = 0.0;    // N·s/m per edge spring, along the edge
+  // Linearised backward Euler (stable at any stiffness, slightly damped); false steps the springs
+  // explicitly: cheaper, but stable only while h √(k/m) stays below about 2 at every node.
+  bool implicit = true;
 };
 
 // How a deformable's bilateral rows (fixed points, anchors and inextensibility without force

@@ -1,0 +1,185 @@
+#include "models/implicit_solve.h"
+
+#include <algorithm>
+
+namespace tandem {
+namespace {
+
+constexpr int kMaxIterations = 100;
+constexpr double kRelativeTolerance = 1e-6;
+
+// A spring's stiffness block k (n nᵀ + max(0, 1 − L/l) (I − n nᵀ)) and its damper's c n nᵀ.
+struct SpringBlocks {
+  Mat3 stiffness = Mat3::Zero();
+  Mat3 damping = Mat3::Zero();
+};
+
+SpringBlocks springBlocks(const EdgeSpring& spring, std::span<const Vec3> position) {
+  const Vec3 d = position[spring.nodeB] - position[spring.nodeA];
+  const double length = d.norm();
+  if (length < 1e-12) return {};
+  const Vec3 n = d / length;
+  const Mat3 along = n * n.transpose();
+  const double sideways = std::max(0.0, 1.0 - spring.restLength / length);
+  return {spring.stiffness * (along + sideways * (Mat3::Identity() - along)), spring.damping * along};
+}
+
+}  // namespace
+
+ImplicitBody makeImplicitBody(int32_t firstNode, int32_t nodeCount, FemElements fem, std::vector<EdgeSpring> springs) {
+  ImplicitBody body;
+  body.firstNode = firstNode;
+  body.nodeCount = nodeCount;
+  body.fem = std::move(fem);
+  body.springs = std::move(springs);
+  body.previousStep.assign(nodeCount, Vec3::Zero());
+  clearSupports(body);
+  return body;
+}
+
+void solveImplicitVelocities(ImplicitBody& body, NodeArrays& nodes, const Vec3& gravity, double h) {
+  const int32_t count = body.nodeCount, first = body.firstNode;
+  auto free = [&](int32_t i) { return nodes.inverseMass[first + i] > 0; };
+  const std::span<const Vec3> position(nodes.position.data() + first, count);
+  std::vector<Vec3> velocity(nodes.velocity.begin() + first, nodes.velocity.begin() + first + count);
+  for (int32_t i = 0; i < count; ++i)
+    if (!free(i)) velocity[i].setZero();
+
+  // Forces at (x, v): the elements' (with their rotations, which K keeps) and the springs'.
+  std::vector<Mat3> rotations(body.fem.tetrahedra.size());
+  std::vector<Vec3> force(count, Vec3::Zero());
+  addFemForces(body.fem, position, force, first, rotations);
+  std::vector<EdgeSpring> springs = body.springs;  // local indices
+  std::vector<SpringBlocks> blocks;
+  for (EdgeSpring& spring : springs) {
+    spring.nodeA -= first;
+    spring.nodeB -= first;
+    blocks.push_back(springBlocks(spring, position));
+  }
+  NodeArrays local;  // addSpringForces works on node arrays
+  local.position.assign(position.begin(), position.end());
+  local.velocity = velocity;
+  local.force = std::move(force);
+  addSpringForces(springs, local);
+  force = std::move(local.force);
+
+  // −K y (stiffness only) or −(h D + h² K) y (`damped`), matrix-free.
+  auto negativeStiffness = [&](const std::vector<Vec3>& y, std::vector<Vec3>& out, bool damped) {
+    out.assign(count, Vec3::Zero());
+    addFemStiffnessProduct(body.fem, rotations, y, out, first);
+    for (Vec3& o : out) o = -o;
+    if (damped)
+      for (Vec3& o : out) o *= h * h;
+    for (size_t s = 0; s < springs.size(); ++s) {
+      const Mat3 block = damped ? Mat3(h * h * blocks[s].stiffness + h * blocks[s].damping) : blocks[s].stiffness;
+      const Vec3 stretch = block * (y[springs[s].nodeB] - y[springs[s].nodeA]);
+      out[springs[s].nodeB] += stretch;
+      out[springs[s].nodeA] -= stretch;
+    }
+  };
+  // A y = (M − h D − h² K) y, with pinned nodes held at zero.
+  std::vector<Vec3> scratch;
+  auto apply = [&](const std::vector<Vec3>& y, std::vector<Vec3>& out) {
+    negativeStiffness(y, scratch, true);
+    out.resize(count);
+    for (int32_t i = 0; i < count; ++i)
+      out[i] = free(i) ? Vec3(y[i] / nodes.inverseMass[first + i] + scratch[i]) : Vec3::Zero();
+  };
+  // b = h (f + f_ext + m g) + h² K v
+  std::vector<Vec3> b(count), kv;
+  negativeStiffness(velocity, kv, false);
+  for (int32_t i = 0; i < count; ++i)
+    b[i] = free(i) ? Vec3(h * (force[i] + nodes.force[first + i] + gravity / nodes.inverseMass[first + i]) - h * h * kv[i])
+                   : Vec3::Zero();
+
+  // Held nodes, and the normal Δv each must take (see the header).
+  std::vector<Vec3> held(count, Vec3::Zero());
+  std::vector<double> heldChange(count, 0.0);
+  for (int32_t i = 0; i < count; ++i) {
+    const Vec3& n = body.supportNormal[i];
+    if (n.isZero() || !free(i)) continue;
+    const double target = body.supportSpeed[i] - std::max(body.supportGap[i], 0.0) / h;
+    const double freeSpeed = n.dot(nodes.velocity[first + i] + h * gravity);
+    if (freeSpeed >= target) continue;
+    held[i] = n;
+    heldChange[i] = target - n.dot(nodes.velocity[first + i]);
+  }
+  // Filtered conjugate gradients from last step's Δv: S takes out the held normal components.
+  auto filter = [&](std::vector<Vec3>& y) {
+    for (int32_t i = 0; i < count; ++i) y[i] -= held[i].dot(y[i]) * held[i];
+  };
+  std::vector<Vec3>& x = body.previousStep;
+  for (int32_t i = 0; i < count; ++i)
+    if (!free(i)) x[i].setZero();
+  std::vector<Vec3> r(count), p, ap;
+  double bNorm = 0.0;
+  for (const Vec3& bi : b) bNorm += bi.squaredNorm();
+  int iteration = 0;
+  for (int round = 0; round < 3; ++round) {
+    for (int32_t i = 0; i < count; ++i) x[i] += (heldChange[i] - held[i].dot(x[i])) * held[i];
+    apply(x, ap);
+    for (int32_t i = 0; i < count; ++i) r[i] = b[i] - ap[i];
+    filter(r);
+    double rr = 0.0;
+    for (const Vec3& ri : r) rr += ri.squaredNorm();
+    p = r;
+    for (; iteration < kMaxIterations && rr > kRelativeTolerance * kRelativeTolerance * bNorm; ++iteration) {
+      apply(p, ap);
+      filter(ap);
+      double pap = 0.0;
+      for (int32_t i = 0; i < count; ++i) pap += p[i].dot(ap[i]);
+      if (pap <= 0) break;  // not positive definite: should not happen, stop rather than diverge
+      const double alpha = rr / pap;
+      double next = 0.0;
+      for (int32_t i = 0; i < count; ++i) {
+        x[i] += alpha * p[i];
+        r[i] -= alpha * ap[i];
+        next += r[i].squaredNorm();
+      }
+      const double beta = next / rr;
+      rr = next;
+      for (int32_t i = 0; i < count; ++i) p[i] = r[i] + beta * p[i];
+    }
+    // Let go of holds that pull (c = A Δv − b against the normal), and solve again if any did.
+    apply(x, ap);
+    bool released = false;
+    for (int32_t i = 0; i < count; ++i) {
+      if (held[i].isZero() || held[i].dot(ap[i] - b[i]) >= 0) continue;
+      held[i].setZero();
+      heldChange[i] = 0.0;
+      released = true;
+    }
+    if (!released) break;
+  }
+  body.lastIterations = iteration;
+  for (int32_t i = 0; i < count; ++i)
+    if (free(i)) nodes.velocity[first + i] += x[i];
+}
+
+void addImplicitStiffness(const ImplicitBody& body, const NodeArrays& nodes, double h, std::vector<NodePairStiffness>& out) {
+  addFemStiffnessBlocks(body.fem, nodes.position, h, out);
+  for (const EdgeSpring& spring : body.springs) {
+    const SpringBlocks blocks = springBlocks(spring, nodes.position);
+    const Mat3 s = h * h * blocks.stiffness + h * blocks.damping;
+    out.push_back({spring.nodeA, spring.nodeA, s});
+    out.push_back({spring.nodeB, spring.nodeB, s});
+    out.push_back({spring.nodeA, spring.nodeB, -s});
+    out.push_back({spring.nodeB, spring.nodeA, -s});
+  }
+}
+
+void addSupport(ImplicitBody& body, int32_t node, const Vec3& normal, double gap, double normalSpeed) {
+  const int32_t i = node - body.firstNode;
+  if (i < 0 || i >= body.nodeCount || (!body.supportNormal[i].isZero() && body.supportGap[i] <= gap)) return;
+  body.supportNormal[i] = normal;  // the nearest surface wins
+  body.supportGap[i] = gap;
+  body.supportSpeed[i] = normalSpeed;
+}
+
+void clearSupports(ImplicitBody& body) {
+  body.supportNormal.assign(body.nodeCount, Vec3::Zero());
+  body.supportGap.assign(body.nodeCount, 0.0);
+  body.supportSpeed.assign(body.nodeCount, 0.0);
+}
+
+}  // namespace tandem
