@@ -75,6 +75,7 @@ std::vector<ContactReport> World::contacts() const {
   const Impl& w = *m_impl;
   std::vector<ContactReport> reports;
   reports.reserve(w.rows.contacts.size());
+  std::vector<bool> holdReported(w.nodes.size(), false);  // see models/implicit_solve.h
   for (const ContactRow& row : w.rows.contacts) {
     ContactReport report;
     const DeformableRecord& body = w.deformableOfNode(row.node[0]);
@@ -90,6 +91,15 @@ std::vector<ContactReport> World::contacts() const {
     report.normal = row.normal;
     report.gap = row.gap;
     report.normalImpulse = row.lambdaNormal;
+    const bool nodeRow = row.coefficient[0] == 1.0 && row.coefficient[1] == 0.0 && row.coefficient[2] == 0.0 &&
+                         row.coefficient[3] == 0.0;
+    if (body.implicitStep && nodeRow && row.body >= 0 && !holdReported[row.node[0]]) {
+      const int32_t i = row.node[0] - body.firstNode;
+      if (body.implicit.holdImpulse[i] != 0.0 && body.implicit.supportBody[i] == row.body) {
+        report.normalImpulse += body.implicit.holdImpulse[i] * body.implicit.supportNormal[i].dot(row.normal);
+        holdReported[row.node[0]] = true;
+      }
+    }
     report.frictionImpulse = row.impulse() - row.lambdaNormal * row.normal;
     reports.push_back(report);
   }

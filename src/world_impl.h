@@ -170,7 +170,20 @@ struct World::Impl final : bullet::SolverHooks {
     previousContacts.clear();
     for (const ContactRow& row : rows.contacts)
       previousContacts[row.key] = {row.lambdaNormal, row.impulse() - row.lambdaNormal * row.normal};
+    addHoldImpulsesToSupports();
     rememberImplicitSupports();
+  }
+
+  // The supports of the implicit bodies' held nodes carried their holds' impulses (see
+  // models/implicit_solve.h): on the report of the bodies' impulse from deformables.
+  void addHoldImpulsesToSupports() {
+    for (const DeformableRecord& body : deformables) {
+      if (!body.implicitStep) continue;
+      const ImplicitBody& model = body.implicit;
+      for (int32_t i = 0; i < model.nodeCount; ++i)
+        if (model.holdImpulse[i] != 0.0)
+          rigid[model.supportBody[i]].impulse -= model.holdImpulse[i] * model.supportNormal[i];
+    }
   }
 
   // The static and kinematic surfaces implicit bodies' nodes touched or neared, with the gap left at the
@@ -190,7 +203,7 @@ struct World::Impl final : bullet::SolverHooks {
       if (!nodeOnStill) continue;
       const double surfaceSpeed = row.normal.dot(rigid[row.body].velocityAt(row.offset));
       const double gapAtEnd = row.gap + timeStep * row.normal.dot(contactRelativeVelocity(row, ctx));
-      for (ImplicitBody* body : implicitBodies) addSupport(*body, row.node[0], row.normal, gapAtEnd, surfaceSpeed);
+      for (ImplicitBody* body : implicitBodies) addSupport(*body, row.node[0], row.body, row.normal, gapAtEnd, surfaceSpeed);
     }
   }
 

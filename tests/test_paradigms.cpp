@@ -268,7 +268,7 @@ TEST(Paradigms, FemJellyHoldsAHeavyPlateWithTheRightCompression) {
   ground.name = "ground";
   ground.shape = RigidShape::plane({0, 1, 0}, 0.0);
   ground.motion = MotionType::Static;
-  ASSERT_TRUE(world.addRigidBody(ground).ok());
+  const RigidBodyId groundId = *world.addRigidBody(ground);
   DeformableDesc jelly;
   jelly.name = "jelly";
   jelly.mesh = *makeTetCylinder({0, 0.005, 0}, radius, height, 2, 8, 3, jellyMass);
@@ -297,6 +297,12 @@ TEST(Paradigms, FemJellyHoldsAHeavyPlateWithTheRightCompression) {
   EXPECT_NEAR(world.rigidPosition(plateId).y() - 0.02 - 0.005, high, 0.001);  // on the jelly, not in it
   EXPECT_LT(world.rigidLinearVelocity(plateId).norm(), 1e-3);
   EXPECT_LT(speed, 1e-3);
+  // The ground's contacts carry, and report, the weight of the jelly and the plate.
+  double groundImpulse = 0.0;
+  for (const ContactReport& contact : world.contacts())
+    if (contact.rigid && *contact.rigid == groundId) groundImpulse += contact.normalImpulse;
+  const double weightImpulse = (jellyMass + plateMass) * 9.81 * kStep;
+  EXPECT_NEAR(groundImpulse, weightImpulse, 0.02 * weightImpulse);
 }
 
 double minimumTetVolume(const DeformableMesh& mesh, std::span<const Vec3> x) {
@@ -320,7 +326,7 @@ TEST_P(JellyDrop, SettlesIntoItsShapeOnTheGround) {
   ground.name = "ground";
   ground.shape = RigidShape::plane({0, 1, 0}, 0.0);
   ground.motion = MotionType::Static;
-  ASSERT_TRUE(world.addRigidBody(ground).ok());
+  const RigidBodyId groundId = *world.addRigidBody(ground);
   DeformableDesc jelly;
   jelly.name = "jelly";
   jelly.mesh = *makeTetCylinder({0, 0.15, 0}, 0.1, 0.2, 2, 8, 3, 0.5);
@@ -355,6 +361,13 @@ TEST_P(JellyDrop, SettlesIntoItsShapeOnTheGround) {
   EXPECT_LT(low, 0.02);
   EXPECT_LT(speed, 0.01);                               // at rest
   EXPECT_GT(minimumTetVolume(world.restMesh(id), x), 0.0);  // no tet turned inside out
+  // The ground carries, and reports, the jelly's weight: on its contacts and as its impulse.
+  double reported = 0.0;
+  for (const ContactReport& contact : world.contacts())
+    if (contact.rigid && *contact.rigid == groundId) reported += contact.normalImpulse;
+  const double weightImpulse = 0.5 * 9.81 * kStep;
+  EXPECT_NEAR(reported, weightImpulse, 0.02 * weightImpulse);
+  EXPECT_NEAR(-world.deformableImpulseOnRigid(groundId).y(), weightImpulse, 0.02 * weightImpulse);
 }
 
 INSTANTIATE_TEST_SUITE_P(Paradigms, JellyDrop, ::testing::Values(ParadigmType::MassSpring, ParadigmType::ShapeMatching,

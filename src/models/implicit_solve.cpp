@@ -33,6 +33,7 @@ ImplicitBody makeImplicitBody(int32_t firstNode, int32_t nodeCount, FemElements 
   body.fem = std::move(fem);
   body.springs = std::move(springs);
   body.previousStep.assign(nodeCount, Vec3::Zero());
+  body.holdImpulse.assign(nodeCount, 0.0);
   clearSupports(body);
   return body;
 }
@@ -152,6 +153,10 @@ void solveImplicitVelocities(ImplicitBody& body, NodeArrays& nodes, const Vec3& 
     if (!released) break;
   }
   body.lastIterations = iteration;
+  apply(x, ap);
+  body.holdImpulse.assign(count, 0.0);
+  for (int32_t i = 0; i < count; ++i)
+    if (!held[i].isZero()) body.holdImpulse[i] = held[i].dot(ap[i] - b[i]);
   for (int32_t i = 0; i < count; ++i)
     if (free(i)) nodes.velocity[first + i] += x[i];
 }
@@ -168,18 +173,20 @@ void addImplicitStiffness(const ImplicitBody& body, const NodeArrays& nodes, dou
   }
 }
 
-void addSupport(ImplicitBody& body, int32_t node, const Vec3& normal, double gap, double normalSpeed) {
+void addSupport(ImplicitBody& body, int32_t node, int32_t rigidBody, const Vec3& normal, double gap, double normalSpeed) {
   const int32_t i = node - body.firstNode;
   if (i < 0 || i >= body.nodeCount || (!body.supportNormal[i].isZero() && body.supportGap[i] <= gap)) return;
   body.supportNormal[i] = normal;  // the nearest surface wins
   body.supportGap[i] = gap;
   body.supportSpeed[i] = normalSpeed;
+  body.supportBody[i] = rigidBody;
 }
 
 void clearSupports(ImplicitBody& body) {
   body.supportNormal.assign(body.nodeCount, Vec3::Zero());
   body.supportGap.assign(body.nodeCount, 0.0);
   body.supportSpeed.assign(body.nodeCount, 0.0);
+  body.supportBody.assign(body.nodeCount, -1);
 }
 
 }  // namespace tandem

@@ -21,7 +21,8 @@
 //   v*·n = w·n − max(gap, 0) / h,    held only if the free motion would go further,
 // by filtered conjugate gradients (Baraff and Witkin 1998). The hold's impulse is
 // c = (A Δv − b)·n; a hold that would pull (c < 0) is let go and the solve repeated, so bodies
-// still lift off.
+// still lift off. The support carries c: it is kept per node (holdImpulse) and reported as part
+// of the node's contact with that surface and of the surface's impulse from deformables.
 //
 // The same h D + h² K goes to the body's direct block (addImplicitStiffness), so that impulses
 // from contacts and attachments move the body as this step would.
@@ -44,6 +45,8 @@ struct ImplicitBody {
   // gap at the step's end, and the surface's normal velocity.
   std::vector<Vec3> supportNormal;
   std::vector<double> supportGap, supportSpeed;
+  std::vector<int32_t> supportBody;  // the rigid body of each support
+  std::vector<double> holdImpulse;   // this step's c per node (N·s along its support's normal), 0 if not held
   int lastIterations = 0;  // conjugate-gradient iterations of the last step
 };
 
@@ -59,7 +62,7 @@ void addImplicitStiffness(const ImplicitBody& body, const NodeArrays& nodes, dou
 
 // Records a static or kinematic surface by a node (global index) for the next solve: its normal,
 // the gap at the step's end and its normal velocity. The caller clears the supports each step.
-void addSupport(ImplicitBody& body, int32_t node, const Vec3& normal, double gap, double normalSpeed);
+void addSupport(ImplicitBody& body, int32_t node, int32_t rigidBody, const Vec3& normal, double gap, double normalSpeed);
 void clearSupports(ImplicitBody& body);
 
 }  // namespace tandem
