@@ -16,6 +16,15 @@ namespace {
 
 constexpr double kStep = 1.0 / 50.0;  // the paper's
 
+// A static ground plane at y = 0.
+RigidBodyId addGround(World& world) {
+  RigidBodyDesc ground;
+  ground.name = "ground";
+  ground.shape = RigidShape::plane({0, 1, 0}, 0.0);
+  ground.motion = MotionType::Static;
+  return *world.addRigidBody(ground);
+}
+
 DeformableMesh jellyMesh() { return *makeTetCylinder({0, 0, 0}, 0.1, 0.2, 2, 8, 3, 0.5); }
 
 // The rest mesh moved rigidly: rotated about a random axis and translated.
@@ -172,11 +181,7 @@ TEST(Paradigms, FemJellyDropIsStableFrom10To100kPa) {
   const double density = mass / (4 * radius * radius * std::sin(M_PI / 4) * height);
   for (double youngs : {10e3, 30e3, 100e3}) {
     World world;
-    RigidBodyDesc ground;
-    ground.name = "ground";
-    ground.shape = RigidShape::plane({0, 1, 0}, 0.0);
-    ground.motion = MotionType::Static;
-    ASSERT_TRUE(world.addRigidBody(ground).ok());
+    addGround(world);
     DeformableDesc jelly;
     jelly.name = "jelly";
     jelly.mesh = *makeTetCylinder({0, 0.15, 0}, radius, height, 2, 8, 3, mass);
@@ -209,11 +214,7 @@ double meshVolume(const DeformableMesh& mesh, std::span<const Vec3> x) {
 TEST(Paradigms, FemJellySquashedByAPlateRecovers) {
   const double height = 0.2;
   World world;
-  RigidBodyDesc ground;
-  ground.name = "ground";
-  ground.shape = RigidShape::plane({0, 1, 0}, 0.0);
-  ground.motion = MotionType::Static;
-  ASSERT_TRUE(world.addRigidBody(ground).ok());
+  addGround(world);
   DeformableDesc jelly;
   jelly.name = "jelly";
   jelly.mesh = *makeTetCylinder({0, 0.005, 0}, 0.1, height, 2, 8, 3, 0.5);
@@ -264,11 +265,7 @@ TEST(Paradigms, FemJellySquashedByAPlateRecovers) {
 TEST(Paradigms, FemJellyHoldsAHeavyPlateWithTheRightCompression) {
   const double youngs = 50e3, radius = 0.1, height = 0.2, jellyMass = 0.5, plateMass = 2.0;
   World world;
-  RigidBodyDesc ground;
-  ground.name = "ground";
-  ground.shape = RigidShape::plane({0, 1, 0}, 0.0);
-  ground.motion = MotionType::Static;
-  const RigidBodyId groundId = *world.addRigidBody(ground);
+  const RigidBodyId groundId = addGround(world);
   DeformableDesc jelly;
   jelly.name = "jelly";
   jelly.mesh = *makeTetCylinder({0, 0.005, 0}, radius, height, 2, 8, 3, jellyMass);
@@ -322,11 +319,7 @@ TEST_P(JellyDrop, SettlesIntoItsShapeOnTheGround) {
                     "PBD's projection ignores the ground and jitters at up to 1 m/s. Next: clusters, or "
                     "projecting inside the solver's sweeps.";
   World world;
-  RigidBodyDesc ground;
-  ground.name = "ground";
-  ground.shape = RigidShape::plane({0, 1, 0}, 0.0);
-  ground.motion = MotionType::Static;
-  const RigidBodyId groundId = *world.addRigidBody(ground);
+  const RigidBodyId groundId = addGround(world);
   DeformableDesc jelly;
   jelly.name = "jelly";
   jelly.mesh = *makeTetCylinder({0, 0.15, 0}, 0.1, 0.2, 2, 8, 3, 0.5);
