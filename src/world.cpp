@@ -93,10 +93,10 @@ std::vector<ContactReport> World::contacts() const {
     report.normalImpulse = row.lambdaNormal;
     const bool nodeRow = row.coefficient[0] == 1.0 && row.coefficient[1] == 0.0 && row.coefficient[2] == 0.0 &&
                          row.coefficient[3] == 0.0;
-    if (body.implicitStep && nodeRow && row.body >= 0 && !holdReported[row.node[0]]) {
-      const int32_t i = row.node[0] - body.firstNode;
-      if (body.implicit.holdImpulse[i] != 0.0 && body.implicit.supportBody[i] == row.body) {
-        report.normalImpulse += body.implicit.holdImpulse[i] * body.implicit.supportNormal[i].dot(row.normal);
+    if (nodeRow && row.body >= 0 && !holdReported[row.node[0]]) {
+      const auto i = static_cast<size_t>(row.node[0] - body.firstNode);
+      if (body.supports.holdBody[i] == row.body) {
+        report.normalImpulse += body.supports.holdImpulse[i].dot(row.normal);
         holdReported[row.node[0]] = true;
       }
     }

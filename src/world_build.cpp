@@ -250,13 +250,15 @@ Result<DeformableId> World::addDeformable(const DeformableDesc& desc) {
     }
   }
   DeformableRecord record{desc.name, first, mesh.nodeCount(), mesh, desc.rowSolver, desc.collision, desc.paradigm,
-                          desc.damping, {}, {}, {}, {}, false, {}};
+                          desc.damping, {}, {}, {}, {}, false, {}, {}};
   // FEM bodies and implicit springs are stepped by the implicit solve; springs on a
   // position-based body are too.
   FemElements fem;
   if (desc.paradigm.type == ParadigmType::CorotationalFem)
     fem = makeFemElements(first, mesh.positions, mesh.tetrahedra, desc.paradigm.youngsModulus, desc.paradigm.poissonRatio);
   record.implicitStep = !fem.tetrahedra.empty() || !implicitSprings.empty();
+  record.supports.reset(first, mesh.nodeCount());
+  record.supports.clearHolds();
   if (record.implicitStep)
     record.implicit = makeImplicitBody(first, mesh.nodeCount(), std::move(fem), std::move(implicitSprings));
   record.paradigmEdges = mesh.edges;

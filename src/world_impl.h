@@ -42,6 +42,7 @@ struct DeformableRecord {
   std::vector<std::array<int32_t, 2>> paradigmEdges;       // local: edges and shear edges
   bool implicitStep = false;  // FEM, or mass-spring with implicit springs: stepped by `implicit`
   ImplicitBody implicit;
+  Supports supports;  // surfaces its nodes rest on, from last step (models/supports.h)
 };
 
 class StageClock {
@@ -94,8 +95,9 @@ struct World::Impl final : bullet::SolverHooks {
     for (Vec3& f : nodes.force) f.setZero();
     addSpringForces(springs, nodes);
     for (DeformableRecord& body : deformables) {
+      body.supports.clearHolds();
       if (body.implicitStep) {
-        solveImplicitVelocities(body.implicit, nodes, settings.gravity, h);  // gravity included
+        solveImplicitVelocities(body.implicit, body.supports, nodes, settings.gravity, h);  // gravity included
       } else {
         for (int32_t i = body.firstNode; i < body.firstNode + body.nodeCount; ++i)
           if (nodes.inverseMass[i] != 0.0)
@@ -107,17 +109,42 @@ struct World::Impl final : bullet::SolverHooks {
   }
 
   // Position-based paradigms turn goals into velocities (mass-spring and FEM bodies are done:
-  // their forces are in v* already).
-  void applyParadigm(const DeformableRecord& body, double h) {
+  // their forces are in v* already), after holding their supported nodes (models/supports.h).
+  void applyParadigm(DeformableRecord& body, double h) {
     if (body.paradigm.type == ParadigmType::MassSpring || body.paradigm.type == ParadigmType::CorotationalFem) return;
+    constexpr double kHeldWeight = 1000.0;  // how much heavier a held node counts in the goals
+    const std::span<const double> inverseMass(nodes.inverseMass.data() + body.firstNode, body.nodeCount);
+    body.supports.hold(std::span<Vec3>(nodes.velocity.data() + body.firstNode, body.nodeCount), inverseMass, h);
+    std::vector<double> weights(inverseMass.begin(), inverseMass.end());
+    for (int32_t i = 0; i < body.nodeCount; ++i)
+      if (body.supports.holdBody[i] >= 0) weights[i] /= kHeldWeight;
     const PositionBasedBody model{body.firstNode,           body.nodeCount,
                                   body.restMesh.positions,  body.paradigmEdges,
                                   body.restMesh.tetrahedra, body.paradigm.stiffness,
-                                  body.paradigm.damping,    body.paradigm.iterations};
+                                  body.paradigm.damping,    body.paradigm.iterations,
+                                  weights};
+    const Vec3 before = bodyMomentum(body);
     if (body.paradigm.type == ParadigmType::ShapeMatching)
       applyShapeMatching(model, nodes, h);
     else
       applyPositionBasedDynamics(model, nodes, h);
+    // Weighted towards the held nodes, the goals move the body's mass centre: that momentum came
+    // through the held nodes from their supports, so it is theirs, by mass.
+    double heldMass = 0.0;
+    for (int32_t i = 0; i < body.nodeCount; ++i)
+      if (body.supports.holdBody[i] >= 0) heldMass += 1.0 / inverseMass[i];
+    if (heldMass == 0.0) return;
+    const Vec3 transmitted = bodyMomentum(body) - before;
+    for (int32_t i = 0; i < body.nodeCount; ++i)
+      if (body.supports.holdBody[i] >= 0)
+        body.supports.holdImpulse[i] += transmitted / (inverseMass[i] * heldMass);
+  }
+
+  Vec3 bodyMomentum(const DeformableRecord& body) const {
+    Vec3 momentum = Vec3::Zero();
+    for (int32_t i = body.firstNode; i < body.firstNode + body.nodeCount; ++i)
+      if (nodes.inverseMass[i] > 0) momentum += nodes.velocity[i] / nodes.inverseMass[i];
+    return momentum;
   }
 
   // v ← v − min(c h, 1) (v − v̄), v̄ the body's mass-weighted mean velocity over its free nodes.
@@ -171,31 +198,21 @@ struct World::Impl final : bullet::SolverHooks {
     for (const ContactRow& row : rows.contacts)
       previousContacts[row.key] = {row.lambdaNormal, row.impulse() - row.lambdaNormal * row.normal};
     addHoldImpulsesToSupports();
-    rememberImplicitSupports();
+    rememberSupports();
   }
 
-  // The supports of the implicit bodies' held nodes carried their holds' impulses (see
-  // models/implicit_solve.h): on the report of the bodies' impulse from deformables.
+  // The supports carried their holds' impulses (models/supports.h): on the report of the
+  // bodies' impulse from deformables.
   void addHoldImpulsesToSupports() {
-    for (const DeformableRecord& body : deformables) {
-      if (!body.implicitStep) continue;
-      const ImplicitBody& model = body.implicit;
-      for (int32_t i = 0; i < model.nodeCount; ++i)
-        if (model.holdImpulse[i] != 0.0)
-          rigid[model.supportBody[i]].impulse -= model.holdImpulse[i] * model.supportNormal[i];
-    }
+    for (const DeformableRecord& body : deformables)
+      for (size_t i = 0; i < body.supports.holdBody.size(); ++i)
+        if (body.supports.holdBody[i] >= 0) rigid[body.supports.holdBody[i]].impulse -= body.supports.holdImpulse[i];
   }
 
-  // The static and kinematic surfaces implicit bodies' nodes touched or neared, with the gap left at the
-  // step's end, for the next step's implicit solve (see models/implicit_solve.h).
-  void rememberImplicitSupports() {
-    std::vector<ImplicitBody*> implicitBodies;
-    for (DeformableRecord& body : deformables) {
-      if (!body.implicitStep) continue;
-      clearSupports(body.implicit);
-      implicitBodies.push_back(&body.implicit);
-    }
-    if (implicitBodies.empty()) return;
+  // The static and kinematic surfaces the nodes touched or neared, with the gap left at the
+  // step's end, for the next step's models (models/supports.h).
+  void rememberSupports() {
+    for (DeformableRecord& body : deformables) body.supports.reset(body.firstNode, body.nodeCount);
     const SolverContext ctx = context();
     for (const ContactRow& row : rows.contacts) {
       const bool nodeOnStill = row.body >= 0 && rigid[row.body].inverseMass == 0.0 && row.coefficient[0] == 1.0 &&
@@ -203,7 +220,8 @@ struct World::Impl final : bullet::SolverHooks {
       if (!nodeOnStill) continue;
       const double surfaceSpeed = row.normal.dot(rigid[row.body].velocityAt(row.offset));
       const double gapAtEnd = row.gap + timeStep * row.normal.dot(contactRelativeVelocity(row, ctx));
-      for (ImplicitBody* body : implicitBodies) addSupport(*body, row.node[0], row.body, row.normal, gapAtEnd, surfaceSpeed);
+      DeformableRecord& body = deformables[static_cast<size_t>(&deformableOfNode(row.node[0]) - deformables.data())];
+      body.supports.add(row.node[0], row.body, row.normal, gapAtEnd, surfaceSpeed);
     }
   }
 

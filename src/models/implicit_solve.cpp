@@ -33,12 +33,11 @@ ImplicitBody makeImplicitBody(int32_t firstNode, int32_t nodeCount, FemElements 
   body.fem = std::move(fem);
   body.springs = std::move(springs);
   body.previousStep.assign(nodeCount, Vec3::Zero());
-  body.holdImpulse.assign(nodeCount, 0.0);
-  clearSupports(body);
   return body;
 }
 
-void solveImplicitVelocities(ImplicitBody& body, NodeArrays& nodes, const Vec3& gravity, double h) {
+void solveImplicitVelocities(ImplicitBody& body, Supports& supports, NodeArrays& nodes, const Vec3& gravity,
+                             double h) {
   const int32_t count = body.nodeCount, first = body.firstNode;
   auto free = [&](int32_t i) { return nodes.inverseMass[first + i] > 0; };
   const std::span<const Vec3> position(nodes.position.data() + first, count);
@@ -97,9 +96,9 @@ void solveImplicitVelocities(ImplicitBody& body, NodeArrays& nodes, const Vec3& 
   std::vector<Vec3> held(count, Vec3::Zero());
   std::vector<double> heldChange(count, 0.0);
   for (int32_t i = 0; i < count; ++i) {
-    const Vec3& n = body.supportNormal[i];
+    const Vec3& n = supports.normal[i];
     if (n.isZero() || !free(i)) continue;
-    const double target = body.supportSpeed[i] - std::max(body.supportGap[i], 0.0) / h;
+    const double target = supports.targetSpeed(i, h);
     const double freeSpeed = n.dot(nodes.velocity[first + i] + h * gravity);
     if (freeSpeed >= target) continue;
     held[i] = n;
@@ -154,9 +153,9 @@ void solveImplicitVelocities(ImplicitBody& body, NodeArrays& nodes, const Vec3& 
   }
   body.lastIterations = iteration;
   apply(x, ap);
-  body.holdImpulse.assign(count, 0.0);
+  supports.clearHolds();
   for (int32_t i = 0; i < count; ++i)
-    if (!held[i].isZero()) body.holdImpulse[i] = held[i].dot(ap[i] - b[i]);
+    if (!held[i].isZero()) supports.recordHold(i, held[i].dot(ap[i] - b[i]));
   for (int32_t i = 0; i < count; ++i)
     if (free(i)) nodes.velocity[first + i] += x[i];
 }
@@ -171,22 +170,6 @@ void addImplicitStiffness(const ImplicitBody& body, const NodeArrays& nodes, dou
     out.push_back({spring.nodeA, spring.nodeB, -s});
     out.push_back({spring.nodeB, spring.nodeA, -s});
   }
-}
-
-void addSupport(ImplicitBody& body, int32_t node, int32_t rigidBody, const Vec3& normal, double gap, double normalSpeed) {
-  const int32_t i = node - body.firstNode;
-  if (i < 0 || i >= body.nodeCount || (!body.supportNormal[i].isZero() && body.supportGap[i] <= gap)) return;
-  body.supportNormal[i] = normal;  // the nearest surface wins
-  body.supportGap[i] = gap;
-  body.supportSpeed[i] = normalSpeed;
-  body.supportBody[i] = rigidBody;
-}
-
-void clearSupports(ImplicitBody& body) {
-  body.supportNormal.assign(body.nodeCount, Vec3::Zero());
-  body.supportGap.assign(body.nodeCount, 0.0);
-  body.supportSpeed.assign(body.nodeCount, 0.0);
-  body.supportBody.assign(body.nodeCount, -1);
 }
 
 }  // namespace tandem

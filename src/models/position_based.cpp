@@ -84,7 +84,8 @@ std::vector<Vec3> positionBasedGoals(const PositionBasedBody& body, std::span<co
 void applyShapeMatching(const PositionBasedBody& body, NodeArrays& nodes, double timeStep) {
   const std::vector<Vec3> predicted = predict(body, nodes, timeStep);
   const std::span<const double> inverseMass(nodes.inverseMass.data() + body.firstNode, body.nodeCount);
-  const std::vector<Vec3> goals = shapeMatchingGoals(body, predicted, inverseMass);
+  const std::vector<Vec3> goals =
+      shapeMatchingGoals(body, predicted, body.weightInverseMass.empty() ? inverseMass : body.weightInverseMass);
   for (int32_t i = 0; i < body.nodeCount; ++i) {
     if (inverseMass[i] == 0.0) continue;
     Vec3& v = nodes.velocity[body.firstNode + i];
@@ -95,7 +96,8 @@ void applyShapeMatching(const PositionBasedBody& body, NodeArrays& nodes, double
 void applyPositionBasedDynamics(const PositionBasedBody& body, NodeArrays& nodes, double timeStep) {
   const std::vector<Vec3> predicted = predict(body, nodes, timeStep);
   const std::span<const double> inverseMass(nodes.inverseMass.data() + body.firstNode, body.nodeCount);
-  const std::vector<Vec3> goals = positionBasedGoals(body, predicted, inverseMass);
+  const std::vector<Vec3> goals =
+      positionBasedGoals(body, predicted, body.weightInverseMass.empty() ? inverseMass : body.weightInverseMass);
   for (int32_t i = 0; i < body.nodeCount; ++i) {
     if (inverseMass[i] == 0.0) continue;
     Vec3& v = nodes.velocity[body.firstNode + i];

@@ -35,6 +35,9 @@ struct PositionBasedBody {
   double stiffness = 1.0;  // k
   double damping = 0.0;    // γ
   int iterations = 4;      // PBD
+  // The goals' weights as inverse masses (local indices); the nodes' own when empty. Nodes held
+  // on a support count heavier, so the shape is fitted to where the support holds them.
+  std::span<const double> weightInverseMass;
 };
 
 // Shape matching's goals g for predicted positions `predicted` (local indices).

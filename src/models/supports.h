@@ -1,0 +1,76 @@
+// Surfaces a deformable's nodes rest on: the static and kinematic bodies they touched or were
+// about to touch last step, kept for the models stage of the next.
+//
+// The models stage runs before the coupling solver sees this step's contacts. A model that
+// ignores them relieves a resting body's stress into the ground (an implicit FEM jelly rests
+// 12 % squashed, a shape-matched one 22 %: the contacts stop only the bottom layer, after the
+// model has moved the rest). So each model holds its supported nodes itself: along the
+// surface's normal n a node gets the normal velocity the contact will give it, the surface's
+// w·n less the gap to close in this step,
+//   v*·n = w·n − max(gap, 0) / h,    held only if its free motion would go further.
+// The support carries the hold's impulse c: it is kept per node (holdImpulse) and reported as
+// part of the node's contact with that surface and of the surface's impulse from deformables.
+#pragma once
+
+#include <tandem/types.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace tandem {
+
+struct Supports {
+  int32_t firstNode = 0;
+  // Per node of the body (local indices): unit normal (zero for none), the gap left at the end of
+  // last step, the surface's normal velocity and its rigid body.
+  std::vector<Vec3> normal;
+  std::vector<double> gap, speed;
+  std::vector<int32_t> body;
+  // This step's holds: the impulse each support gave its node (N·s), and that support's body.
+  std::vector<Vec3> holdImpulse;
+  std::vector<int32_t> holdBody;
+
+  void reset(int32_t first, int32_t count) {
+    firstNode = first;
+    normal.assign(count, Vec3::Zero());
+    gap.assign(count, 0.0);
+    speed.assign(count, 0.0);
+    body.assign(count, -1);
+  }
+  void clearHolds() {
+    holdImpulse.assign(normal.size(), Vec3::Zero());
+    holdBody.assign(normal.size(), -1);
+  }
+  void recordHold(size_t i, double impulse) {
+    holdImpulse[i] = impulse * normal[i];
+    holdBody[i] = body[i];
+  }
+  // A surface by node `node` (global index); the nearest one wins.
+  void add(int32_t node, int32_t rigidBody, const Vec3& n, double gapAtEnd, double normalSpeed) {
+    const auto i = static_cast<size_t>(node - firstNode);
+    if (node < firstNode || i >= normal.size() || (!normal[i].isZero() && gap[i] <= gapAtEnd)) return;
+    normal[i] = n;
+    gap[i] = gapAtEnd;
+    speed[i] = normalSpeed;
+    body[i] = rigidBody;
+  }
+  // The normal velocity a held node gets this step.
+  double targetSpeed(size_t i, double timeStep) const { return speed[i] - std::max(gap[i], 0.0) / timeStep; }
+
+  // For models that take v* as it is (position-based): raises each supported node's normal
+  // velocity to its target, recording the impulse. `velocity` and `inverseMass` are the body's.
+  void hold(std::span<Vec3> velocity, std::span<const double> inverseMass, double timeStep) {
+    clearHolds();
+    for (size_t i = 0; i < normal.size(); ++i) {
+      if (normal[i].isZero() || inverseMass[i] == 0.0) continue;
+      const double missing = targetSpeed(i, timeStep) - normal[i].dot(velocity[i]);
+      if (missing <= 0) continue;
+      velocity[i] += missing * normal[i];
+      recordHold(i, missing / inverseMass[i]);
+    }
+  }
+};
+
+}  // namespace tandem
