@@ -15,6 +15,10 @@
 //
 // Reading the paper's ṽ in eq. 2 as v*: with ṽ = v a body at rest would lose the velocity
 // gravity gives it in the step. Under any rigid motion g = x* exactly: no internal force.
+//
+// The goals are weighted by the nodes' masses, or by `weightInverseMass` when given: the world
+// weighs nodes held on a support (models/supports.h) 1000× heavier, so the shape is fitted to
+// where the support holds them rather than sinking with the rest of the body.
 #pragma once
 
 #include "solver/solver_state.h"
