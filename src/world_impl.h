@@ -114,7 +114,10 @@ struct World::Impl final : bullet::SolverHooks {
     if (body.paradigm.type == ParadigmType::MassSpring || body.paradigm.type == ParadigmType::CorotationalFem) return;
     constexpr double kHeldWeight = 1000.0;  // how much heavier a held node counts in the goals
     const std::span<const double> inverseMass(nodes.inverseMass.data() + body.firstNode, body.nodeCount);
-    body.supports.hold(std::span<Vec3>(nodes.velocity.data() + body.firstNode, body.nodeCount), inverseMass, h);
+    // PBD is not held yet: with its projections weighted this way, a PBD jelly resting on a box
+    // blew up (24 m/s within three steps) for reasons not yet found.
+    if (body.paradigm.type == ParadigmType::ShapeMatching)
+      body.supports.hold(std::span<Vec3>(nodes.velocity.data() + body.firstNode, body.nodeCount), inverseMass, h);
     std::vector<double> weights(inverseMass.begin(), inverseMass.end());
     for (int32_t i = 0; i < body.nodeCount; ++i)
       if (body.supports.holdBody[i] >= 0) weights[i] /= kHeldWeight;
