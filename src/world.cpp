@@ -91,9 +91,7 @@ std::vector<ContactReport> World::contacts() const {
     report.normal = row.normal;
     report.gap = row.gap;
     report.normalImpulse = row.lambdaNormal;
-    const bool nodeRow = row.coefficient[0] == 1.0 && row.coefficient[1] == 0.0 && row.coefficient[2] == 0.0 &&
-                         row.coefficient[3] == 0.0;
-    if (nodeRow && row.body >= 0 && !holdReported[row.node[0]]) {
+    if (row.isNodeOnRigid() && !holdReported[row.node[0]]) {
       const auto i = static_cast<size_t>(row.node[0] - body.firstNode);
       if (body.supports.holdBody[i] == row.body) {
         report.normalImpulse += body.supports.holdImpulse[i].dot(row.normal);

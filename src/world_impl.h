@@ -218,9 +218,7 @@ struct World::Impl final : bullet::SolverHooks {
     for (DeformableRecord& body : deformables) body.supports.reset(body.firstNode, body.nodeCount);
     const SolverContext ctx = context();
     for (const ContactRow& row : rows.contacts) {
-      const bool nodeOnStill = row.body >= 0 && rigid[row.body].inverseMass == 0.0 && row.coefficient[0] == 1.0 &&
-                               row.coefficient[1] == 0.0 && row.coefficient[2] == 0.0 && row.coefficient[3] == 0.0;
-      if (!nodeOnStill) continue;
+      if (!row.isNodeOnRigid() || rigid[row.body].inverseMass != 0.0) continue;
       const double surfaceSpeed = row.normal.dot(rigid[row.body].velocityAt(row.offset));
       const double gapAtEnd = row.gap + timeStep * row.normal.dot(contactRelativeVelocity(row, ctx));
       DeformableRecord& body = deformables[static_cast<size_t>(&deformableOfNode(row.node[0]) - deformables.data())];

@@ -67,6 +67,10 @@ struct ContactRow {
   bool inDirectBlock = false;  // its normal row is solved by a direct block
 
   Vec3 impulse() const { return lambdaNormal * normal + lambdaTangent[0] * tangent1 + lambdaTangent[1] * tangent2; }
+  // A node against a rigid shape (not a face, edge or another body's surface).
+  bool isNodeOnRigid() const {
+    return body >= 0 && coefficient[0] == 1.0 && coefficient[1] == 0.0 && coefficient[2] == 0.0 && coefficient[3] == 0.0;
+  }
 };
 
 inline Vec3 contactRelativeVelocity(const ContactRow& row, const SolverContext& ctx) {

@@ -80,11 +80,8 @@ void addFemStiffnessProduct(const FemElements& elements, std::span<const Mat3> r
   }
 }
 
-void addFemStiffnessBlocks(const FemElements& elements, std::span<const Vec3> position, double h,
+void addFemStiffnessBlocks(const FemElements& elements, std::span<const Mat3> rotations, double h,
                            std::vector<NodePairStiffness>& out) {
-  std::vector<Mat3> rotations(elements.tetrahedra.size());
-  std::vector<Vec3> unused(position.size(), Vec3::Zero());
-  addFemForces(elements, position, unused, 0, rotations);
   for (size_t t = 0; t < elements.tetrahedra.size(); ++t) {
     const FemTetrahedron& tet = elements.tetrahedra[t];
     std::array<std::array<Mat3, 4>, 4> block;  // block[a][b]: −h² ∂f_a / ∂x_b

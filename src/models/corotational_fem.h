@@ -48,8 +48,8 @@ void addFemForces(const FemElements& elements, std::span<const Vec3> position, s
 void addFemStiffnessProduct(const FemElements& elements, std::span<const Mat3> rotations, std::span<const Vec3> dx,
                             std::span<Vec3> out, int32_t offset);
 
-// −h² K at `position`, as 3×3 node-pair blocks (global indices).
-void addFemStiffnessBlocks(const FemElements& elements, std::span<const Vec3> position, double timeStep,
+// −h² K with the given rotations, as 3×3 node-pair blocks (global indices).
+void addFemStiffnessBlocks(const FemElements& elements, std::span<const Mat3> rotations, double timeStep,
                            std::vector<NodePairStiffness>& out);
 
 }  // namespace tandem

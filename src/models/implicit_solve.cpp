@@ -46,9 +46,10 @@ void solveImplicitVelocities(ImplicitBody& body, Supports& supports, NodeArrays&
     if (!free(i)) velocity[i].setZero();
 
   // Forces at (x, v): the elements' (with their rotations, which K keeps) and the springs'.
-  std::vector<Mat3> rotations(body.fem.tetrahedra.size());
+  body.rotations.resize(body.fem.tetrahedra.size());
+  const std::vector<Mat3>& rotations = body.rotations;
   std::vector<Vec3> force(count, Vec3::Zero());
-  addFemForces(body.fem, position, force, first, rotations);
+  addFemForces(body.fem, position, force, first, body.rotations);
   std::vector<EdgeSpring> springs = body.springs;  // local indices
   std::vector<SpringBlocks> blocks;
   for (EdgeSpring& spring : springs) {
@@ -56,20 +57,14 @@ void solveImplicitVelocities(ImplicitBody& body, Supports& supports, NodeArrays&
     spring.nodeB -= first;
     blocks.push_back(springBlocks(spring, position));
   }
-  NodeArrays local;  // addSpringForces works on node arrays
-  local.position.assign(position.begin(), position.end());
-  local.velocity = velocity;
-  local.force = std::move(force);
-  addSpringForces(springs, local);
-  force = std::move(local.force);
+  addSpringForces(springs, position, velocity, force);
 
   // −K y (stiffness only) or −(h D + h² K) y (`damped`), matrix-free.
   auto negativeStiffness = [&](const std::vector<Vec3>& y, std::vector<Vec3>& out, bool damped) {
     out.assign(count, Vec3::Zero());
     addFemStiffnessProduct(body.fem, rotations, y, out, first);
-    for (Vec3& o : out) o = -o;
-    if (damped)
-      for (Vec3& o : out) o *= h * h;
+    const double scale = damped ? -h * h : -1.0;
+    for (Vec3& o : out) o *= scale;
     for (size_t s = 0; s < springs.size(); ++s) {
       const Mat3 block = damped ? Mat3(h * h * blocks[s].stiffness + h * blocks[s].damping) : blocks[s].stiffness;
       const Vec3 stretch = block * (y[springs[s].nodeB] - y[springs[s].nodeA]);
@@ -152,8 +147,7 @@ void solveImplicitVelocities(ImplicitBody& body, Supports& supports, NodeArrays&
     if (!released) break;
   }
   body.lastIterations = iteration;
-  apply(x, ap);
-  supports.clearHolds();
+  supports.clearHolds();  // ap is A x: x has not moved since the last release check
   for (int32_t i = 0; i < count; ++i)
     if (!held[i].isZero()) supports.recordHold(i, held[i].dot(ap[i] - b[i]));
   for (int32_t i = 0; i < count; ++i)
@@ -161,7 +155,7 @@ void solveImplicitVelocities(ImplicitBody& body, Supports& supports, NodeArrays&
 }
 
 void addImplicitStiffness(const ImplicitBody& body, const NodeArrays& nodes, double h, std::vector<NodePairStiffness>& out) {
-  addFemStiffnessBlocks(body.fem, nodes.position, h, out);
+  addFemStiffnessBlocks(body.fem, body.rotations, h, out);
   for (const EdgeSpring& spring : body.springs) {
     const SpringBlocks blocks = springBlocks(spring, nodes.position);
     const Mat3 s = h * h * blocks.stiffness + h * blocks.damping;

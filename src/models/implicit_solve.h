@@ -35,6 +35,7 @@ struct ImplicitBody {
   FemElements fem;                  // none for a mass-spring body
   std::vector<EdgeSpring> springs;  // global indices
   std::vector<Vec3> previousStep;   // last step's Δv, the solve's starting guess (local indices)
+  std::vector<Mat3> rotations;      // of each element at this step's positions, from the solve
   int lastIterations = 0;  // conjugate-gradient iterations of the last step
 };
 
@@ -45,7 +46,8 @@ ImplicitBody makeImplicitBody(int32_t firstNode, int32_t nodeCount, FemElements 
 void solveImplicitVelocities(ImplicitBody& body, Supports& supports, NodeArrays& nodes, const Vec3& gravity,
                              double timeStep);
 
-// h D + h² (−K) at the current state, as node-pair blocks (global indices), for a direct block.
+// h D + h² (−K) at the current state, as node-pair blocks (global indices), for a direct block;
+// the elements' rotations are the solve's (the nodes have not moved since).
 void addImplicitStiffness(const ImplicitBody& body, const NodeArrays& nodes, double timeStep,
                           std::vector<NodePairStiffness>& out);
 

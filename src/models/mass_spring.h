@@ -21,17 +21,23 @@ struct EdgeSpring {
   double damping = 0.0;    // N·s/m
 };
 
-inline void addSpringForces(std::span<const EdgeSpring> springs, NodeArrays& nodes) {
+// Adds the springs' forces to `force`; the springs index `position`, `velocity` and `force`.
+inline void addSpringForces(std::span<const EdgeSpring> springs, std::span<const Vec3> position,
+                            std::span<const Vec3> velocity, std::span<Vec3> force) {
   for (const EdgeSpring& spring : springs) {
-    const Vec3 d = nodes.position[spring.nodeB] - nodes.position[spring.nodeA];
+    const Vec3 d = position[spring.nodeB] - position[spring.nodeA];
     const double length = d.norm();
     if (length < 1e-12) continue;
     const Vec3 n = d / length;
-    const double stretchRate = (nodes.velocity[spring.nodeB] - nodes.velocity[spring.nodeA]).dot(n);
-    const Vec3 force = -(spring.stiffness * (length - spring.restLength) + spring.damping * stretchRate) * n;
-    nodes.force[spring.nodeB] += force;
-    nodes.force[spring.nodeA] -= force;
+    const double stretchRate = (velocity[spring.nodeB] - velocity[spring.nodeA]).dot(n);
+    const Vec3 f = -(spring.stiffness * (length - spring.restLength) + spring.damping * stretchRate) * n;
+    force[spring.nodeB] += f;
+    force[spring.nodeA] -= f;
   }
+}
+
+inline void addSpringForces(std::span<const EdgeSpring> springs, NodeArrays& nodes) {
+  addSpringForces(springs, nodes.position, nodes.velocity, nodes.force);
 }
 
 }  // namespace tandem
