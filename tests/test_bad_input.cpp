@@ -124,6 +124,8 @@ TEST(BadInput, WorldRefusesBadBodiesAndConstraints) {
   EXPECT_ERROR(world.addHinge({crate, std::nullopt, {0, 0, 0}, {0, 0, 0}}), "axis must be a finite non-zero vector");
   EXPECT_ERROR(world.setNodeVelocity(id, 0, {kNaN, 0, 0}), "velocity is not finite");
   EXPECT_ERROR(world.fixNode(id, 4), "node 4 is out of range");
+  EXPECT_ERROR(world.setNodePosition(id, 0, {0, kNaN, 0}), "set node position: position is not finite");
+  EXPECT_ERROR(world.setNodePosition(id, -1, {0, 0, 0}), "set node position: node -1 is out of range");
 
   WorldSettings settings;
   settings.solver.iterations = 0;
