@@ -112,35 +112,36 @@ struct World::Impl final : bullet::SolverHooks {
   // their forces are in v* already), after holding their supported nodes (models/supports.h).
   void applyParadigm(DeformableRecord& body, double h) {
     if (body.paradigm.type == ParadigmType::MassSpring || body.paradigm.type == ParadigmType::CorotationalFem) return;
-    constexpr double kHeldWeight = 1000.0;  // how much heavier a held node counts in the goals
-    const std::span<const double> inverseMass(nodes.inverseMass.data() + body.firstNode, body.nodeCount);
-    // PBD is not held yet: with its projections weighted this way, a PBD jelly resting on a box
-    // blew up (24 m/s within three steps) for reasons not yet found.
-    if (body.paradigm.type == ParadigmType::ShapeMatching)
-      body.supports.hold(std::span<Vec3>(nodes.velocity.data() + body.firstNode, body.nodeCount), inverseMass, h);
-    std::vector<double> weights(inverseMass.begin(), inverseMass.end());
-    for (int32_t i = 0; i < body.nodeCount; ++i)
-      if (body.supports.holdBody[i] >= 0) weights[i] /= kHeldWeight;
-    const PositionBasedBody model{body.firstNode,           body.nodeCount,
-                                  body.restMesh.positions,  body.paradigmEdges,
-                                  body.restMesh.tetrahedra, body.paradigm.stiffness,
-                                  body.paradigm.damping,    body.paradigm.iterations,
-                                  weights};
-    const Vec3 before = bodyMomentum(body);
-    if (body.paradigm.type == ParadigmType::ShapeMatching)
-      applyShapeMatching(model, nodes, h);
-    else
+    PositionBasedBody model{body.firstNode,           body.nodeCount,
+                            body.restMesh.positions,  body.paradigmEdges,
+                            body.restMesh.tetrahedra, body.paradigm.stiffness,
+                            body.paradigm.damping,    body.paradigm.iterations,
+                            {}};
+    // PBD is not held yet: with its projections weighted like shape matching's fit, a PBD jelly
+    // resting on a box blew up (24 m/s within three steps) for reasons not yet found.
+    if (body.paradigm.type == ParadigmType::PositionBased) {
       applyPositionBasedDynamics(model, nodes, h);
-    // Weighted towards the held nodes, the goals move the body's mass centre: that momentum came
-    // through the held nodes from their supports, so it is theirs, by mass.
+      return;
+    }
+    constexpr double kHeldWeight = 1000.0;  // how much heavier a held node counts in the fit
+    const std::span<const double> inverseMass(nodes.inverseMass.data() + body.firstNode, body.nodeCount);
+    body.supports.hold(std::span<Vec3>(nodes.velocity.data() + body.firstNode, body.nodeCount), inverseMass, h);
+    std::vector<double> weights(inverseMass.begin(), inverseMass.end());
     double heldMass = 0.0;
-    for (int32_t i = 0; i < body.nodeCount; ++i)
-      if (body.supports.holdBody[i] >= 0) heldMass += 1.0 / inverseMass[i];
+    for (int32_t i = 0; i < body.nodeCount; ++i) {
+      if (body.supports.holdBody[i] < 0) continue;
+      weights[i] /= kHeldWeight;
+      heldMass += 1.0 / inverseMass[i];
+    }
+    model.weightInverseMass = weights;
+    const Vec3 before = bodyMomentum(body);
+    applyShapeMatching(model, nodes, h);
+    // Weighted towards the held nodes, the fit moves the body's mass centre: that momentum came
+    // through the held nodes from their supports, so it is theirs, by mass.
     if (heldMass == 0.0) return;
     const Vec3 transmitted = bodyMomentum(body) - before;
     for (int32_t i = 0; i < body.nodeCount; ++i)
-      if (body.supports.holdBody[i] >= 0)
-        body.supports.holdImpulse[i] += transmitted / (inverseMass[i] * heldMass);
+      if (body.supports.holdBody[i] >= 0) body.supports.holdImpulse[i] += transmitted / (inverseMass[i] * heldMass);
   }
 
   Vec3 bodyMomentum(const DeformableRecord& body) const {

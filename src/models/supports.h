@@ -59,8 +59,9 @@ struct Supports {
   // The normal velocity a held node gets this step.
   double targetSpeed(size_t i, double timeStep) const { return speed[i] - std::max(gap[i], 0.0) / timeStep; }
 
-  // For models that take v* as it is (position-based): raises each supported node's normal
-  // velocity to its target, recording the impulse. `velocity` and `inverseMass` are the body's.
+  // For models that take v* as it is (shape matching; PBD is not held yet): raises each
+  // supported node's normal velocity to its target, recording the impulse. `velocity` and
+  // `inverseMass` are the body's.
   void hold(std::span<Vec3> velocity, std::span<const double> inverseMass, double timeStep) {
     clearHolds();
     for (size_t i = 0; i < normal.size(); ++i) {
