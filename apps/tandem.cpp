@@ -1,4 +1,6 @@
-// The `tandem` command: run and list scenes.
+// The `tandem` command: run, check and list scenes (scene files or built-in scenes).
+#include <tandem/record.h>
+#include <tandem/scene_file.h>
 #include <tandem/scenes.h>
 #include <tandem/world.h>
 
@@ -8,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -20,6 +23,8 @@ using tandem::StepReport;
 
 struct RunOptions {
   std::string scene;
+  std::string record;
+  bool recordNodes = false;
   long steps = 0;
   double seconds = 0.0;
   double timeStep = 0.0;
@@ -53,33 +58,76 @@ void printReport(const StepReport& report, const std::vector<double>& stageTotal
   std::printf("\n");
 }
 
+// What `run` needs to know about a scene besides the world it built.
+struct SceneInfo {
+  std::string name;
+  std::string description;
+  double timeStep = 0;
+  double duration = 0;
+};
+
+bool isSceneFile(const std::string& scene) {
+  return scene.ends_with(".json") || scene.find('/') != std::string::npos || std::filesystem::is_regular_file(scene);
+}
+
+// Builds a scene file or a built-in scene into `world`; prints the problem and returns nothing
+// when it cannot.
+std::optional<SceneInfo> buildInto(tandem::World& world, const std::string& scene) {
+  if (isSceneFile(scene)) {
+    tandem::Result<tandem::Scene> loaded = tandem::loadScene(scene);
+    tandem::Status built = loaded ? tandem::buildScene(*loaded, world) : loaded.status();
+    if (!built) {
+      std::fprintf(stderr, "tandem: %s\n", built.message().c_str());
+      return std::nullopt;
+    }
+    const std::string name = loaded->name.empty() ? std::filesystem::path(scene).stem().string() : loaded->name;
+    return SceneInfo{name, loaded->description, loaded->timeStep, loaded->duration};
+  }
+  const BuiltinScene* builtin = tandem::findBuiltinScene(scene);
+  if (!builtin) {
+    std::fprintf(stderr, "tandem: no scene file or built-in scene named '%s' (see `tandem list`)\n", scene.c_str());
+    return std::nullopt;
+  }
+  if (tandem::Status s = builtin->build(world); !s) {
+    std::fprintf(stderr, "tandem: scene '%s': %s\n", scene.c_str(), s.message().c_str());
+    return std::nullopt;
+  }
+  return SceneInfo{std::string(builtin->name), std::string(builtin->description), builtin->timeStep,
+                   builtin->defaultSeconds};
+}
+
 int run(const RunOptions& options) {
-  const BuiltinScene* scene = tandem::findBuiltinScene(options.scene);
-  if (!scene) {
-    std::fprintf(stderr, "tandem: no scene named '%s' (see `tandem list`)\n", options.scene.c_str());
-    return 2;
-  }
   tandem::World world;
-  tandem::WorldSettings settings = world.settings();
-  if (options.iterations > 0) settings.solver.iterations = options.iterations;
-  if (tandem::Status s = world.setSettings(settings); !s) {
-    std::fprintf(stderr, "tandem: %s\n", s.message().c_str());
-    return 2;
-  }
-  if (tandem::Status s = scene->build(world); !s) {
-    std::fprintf(stderr, "tandem: scene '%s': %s\n", options.scene.c_str(), s.message().c_str());
-    return 1;
+  const std::optional<SceneInfo> scene = buildInto(world, options.scene);
+  if (!scene) return 1;
+  if (options.iterations > 0) {
+    tandem::WorldSettings settings = world.settings();
+    settings.solver.iterations = options.iterations;
+    if (tandem::Status s = world.setSettings(settings); !s) {
+      std::fprintf(stderr, "tandem: %s\n", s.message().c_str());
+      return 2;
+    }
   }
   const double h = options.timeStep > 0 ? options.timeStep : scene->timeStep;
-  const double seconds = options.seconds > 0 ? options.seconds : scene->defaultSeconds;
-  const long steps = options.steps > 0 ? options.steps : std::lround(seconds / h);
+  const double seconds = options.seconds > 0 ? options.seconds : scene->duration;
+  const long steps = options.steps > 0 ? options.steps : std::max(1L, std::lround(seconds / h));
+  std::optional<tandem::StepRecorder> recorder;
+  if (!options.record.empty()) {
+    tandem::Result<tandem::StepRecorder> opened = tandem::StepRecorder::open(options.record, options.recordNodes);
+    tandem::Status written = opened ? opened->write(world) : opened.status();
+    if (!written) {
+      std::fprintf(stderr, "tandem: %s\n", written.message().c_str());
+      return 2;
+    }
+    recorder.emplace(std::move(opened).value());
+  }
 
   int nodes = 0;
   for (int d = 0; d < world.deformableCount(); ++d)
     nodes += static_cast<int>(world.nodePositions(tandem::DeformableId{d}).size());
   if (!options.quiet)
     std::printf("Scene '%s': %s\n  %d deformable bodies (%d nodes), %d rigid bodies; h = %.4g s, %d iterations\n",
-                std::string(scene->name).c_str(), std::string(scene->description).c_str(), world.deformableCount(),
+                scene->name.c_str(), scene->description.c_str(), world.deformableCount(),
                 nodes, world.rigidBodyCount(), h, world.settings().solver.iterations);
 
   std::vector<double> stepMs;
@@ -94,6 +142,12 @@ int run(const RunOptions& options) {
     if (tandem::Status s = world.step(h); !s) {
       std::fprintf(stderr, "\ntandem: %s\n", s.message().c_str());
       return 1;
+    }
+    if (recorder) {
+      if (tandem::Status s = recorder->write(world); !s) {
+        std::fprintf(stderr, "\ntandem: %s\n", s.message().c_str());
+        return 1;
+      }
     }
     stepMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - before).count());
     const StepReport& report = world.lastReport();
@@ -128,6 +182,46 @@ int run(const RunOptions& options) {
   return 0;
 }
 
+// Loads and builds each scene file (without stepping it): every problem a run would meet.
+int validate(const std::vector<std::string>& files) {
+  int failures = 0;
+  for (const std::string& file : files) {
+    tandem::Result<tandem::Scene> scene = tandem::loadScene(file);
+    tandem::World world;
+    tandem::Status built = scene ? tandem::buildScene(*scene, world) : scene.status();
+    if (!built) {
+      std::fprintf(stderr, "tandem: %s\n", built.message().c_str());
+      ++failures;
+      continue;
+    }
+    int nodes = 0;
+    for (int d = 0; d < world.deformableCount(); ++d)
+      nodes += static_cast<int>(world.nodePositions(tandem::DeformableId{d}).size());
+    std::printf("%s: ok (%d rigid bodies, %d deformables with %d nodes, %zu joints, %zu anchors)\n", file.c_str(),
+                world.rigidBodyCount(), world.deformableCount(), nodes, scene->joints.size(), scene->anchors.size());
+  }
+  return failures ? 1 : 0;
+}
+
+// The built-in scenes, then the scene files shipped in scenes/.
+void list() {
+  std::printf("Built-in scenes (tandem run NAME):\n");
+  for (const BuiltinScene& scene : tandem::builtinScenes())
+    std::printf("  %-18s %s\n", std::string(scene.name).c_str(), std::string(scene.description).c_str());
+  std::vector<std::filesystem::path> files;
+  std::error_code error;
+  for (const auto& entry : std::filesystem::directory_iterator(TANDEM_SCENE_DIR, error))
+    if (entry.path().extension() == ".json") files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  if (files.empty()) return;
+  std::printf("Scene files in %s (tandem run FILE):\n", TANDEM_SCENE_DIR);
+  for (const auto& file : files) {
+    tandem::Result<tandem::Scene> scene = tandem::loadScene(file.string());
+    std::printf("  %-24s %s\n", file.filename().string().c_str(),
+                scene ? scene->description.c_str() : "(does not load: see tandem validate)");
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -136,7 +230,8 @@ int main(int argc, char** argv) {
 
   RunOptions options;
   CLI::App* runCommand = app.add_subcommand("run", "Run a scene headless and print what it simulated and how fast");
-  runCommand->add_option("scene", options.scene, "Built-in scene name (see `tandem list`)")->required();
+  runCommand->add_option("scene", options.scene, "A scene file (.json) or a built-in scene's name (see `tandem list`)")
+      ->required();
   auto* stepsOption = runCommand->add_option("--steps", options.steps, "Number of steps")->check(CLI::PositiveNumber);
   runCommand->add_option("--seconds", options.seconds, "Simulated seconds (instead of --steps)")
       ->check(CLI::PositiveNumber)
@@ -145,14 +240,21 @@ int main(int argc, char** argv) {
   runCommand->add_option("--iterations", options.iterations, "Solver iterations K")->check(CLI::Range(1, 1000));
   runCommand->add_flag("--report", options.report, "Print stage times, row counts and convergence");
   runCommand->add_flag("--quiet", options.quiet, "Print only the summary lines");
+  auto* recordOption =
+      runCommand->add_option("--record", options.record, "Write every step's rigid poses and velocities to this CSV file");
+  runCommand->add_flag("--record-nodes", options.recordNodes, "Also record every deformable node")->needs(recordOption);
 
-  CLI::App* listCommand = app.add_subcommand("list", "List the built-in scenes");
+  std::vector<std::string> validateFiles;
+  CLI::App* validateCommand = app.add_subcommand("validate", "Check scene files: load and build them without running");
+  validateCommand->add_option("files", validateFiles, "Scene files")->required();
+
+  CLI::App* listCommand = app.add_subcommand("list", "List the built-in scenes and the shipped scene files");
 
   CLI11_PARSE(app, argc, argv);
   if (listCommand->parsed()) {
-    for (const BuiltinScene& scene : tandem::builtinScenes())
-      std::printf("%-18s %s\n", std::string(scene.name).c_str(), std::string(scene.description).c_str());
+    list();
     return 0;
   }
+  if (validateCommand->parsed()) return validate(validateFiles);
   return run(options);
 }

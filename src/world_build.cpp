@@ -165,6 +165,13 @@ Result<JointId> World::addHinge(const HingeDesc& desc) {
   return JointId{m_impl->bullet.addHinge(desc)};
 }
 
+Result<JointId> World::addFixedJoint(const FixedJointDesc& desc) {
+  if (!m_impl->validRigid(desc.bodyA)) return Error{"fixed joint: body A does not exist"};
+  if (desc.bodyB && !m_impl->validRigid(*desc.bodyB)) return Error{"fixed joint: body B does not exist"};
+  if (desc.bodyB && *desc.bodyB == desc.bodyA) return Error{"fixed joint: body A and body B are the same body"};
+  return JointId{m_impl->bullet.addFixedJoint(desc)};
+}
+
 void World::putRigidToSleep(RigidBodyId body) { m_impl->bullet.putToSleep(body.index); }
 void World::setRigidCanSleep(RigidBodyId body, bool canSleep) { m_impl->bullet.setCanSleep(body.index, canSleep); }
 

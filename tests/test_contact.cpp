@@ -1,6 +1,5 @@
 // Contacts and friction: cloth against rigid shapes, against cloth and against itself.
-#include "bullet/bullet_world.h"
-#include "collision/geometry.h"
+#include "rigid_distance.h"
 
 #include <tandem/world.h>
 
@@ -10,6 +9,9 @@
 
 namespace tandem {
 namespace {
+
+using testing_support::collisionShape;
+using testing_support::signedDistance;
 
 constexpr double kStep = 1.0 / 60.0;
 constexpr double kPi = 3.14159265358979323846;
@@ -35,20 +37,6 @@ RigidBodyDesc staticBody(std::string name, const RigidShape& shape, const Vec3& 
   desc.position = position;
   desc.orientation = orientation;
   return desc;
-}
-
-// The shape as Tandem's collision detection sees it (with a hull's planes, a mesh's grid).
-geometry::CollisionShape collisionShape(const RigidShape& shape) {
-  geometry::CollisionShape collision;
-  collision.shape = shape;
-  if (shape.type == ShapeType::ConvexHull) collision.planes = bullet::convexHullPlanes(shape.points);
-  if (shape.type == ShapeType::TriangleMesh) collision.grid.build(shape.points, shape.triangles);
-  return collision;
-}
-
-double signedDistance(const World& world, RigidBodyId body, const geometry::CollisionShape& shape, const Vec3& point) {
-  const Vec3 local = world.rigidOrientation(body).conjugate() * (point - world.rigidPosition(body));
-  return geometry::distanceToShape(shape, local, 1.0).distance;
 }
 
 // A square pyramid, 0.6 m wide and 0.4 m tall, about its base centre.

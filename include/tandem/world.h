@@ -116,6 +116,12 @@ struct HingeDesc {
   Vec3 axis{0.0, 0.0, 1.0};
 };
 
+// Holds `bodyA` to `bodyB` (or to the world when bodyB is unset) in their pose at creation time.
+struct FixedJointDesc {
+  RigidBodyId bodyA;
+  std::optional<RigidBodyId> bodyB;
+};
+
 // ---- Deformable bodies ----------------------------------------------------------------------
 
 // How an inextensibility row's impulse is bounded (paper §4.2).
@@ -243,6 +249,7 @@ class World {
   // Rigid bodies and joints
   Result<RigidBodyId> addRigidBody(const RigidBodyDesc& desc);
   Result<JointId> addHinge(const HingeDesc& desc);
+  Result<JointId> addFixedJoint(const FixedJointDesc& desc);
   int rigidBodyCount() const;
   std::optional<RigidBodyId> findRigidBody(std::string_view name) const;
   const std::string& rigidName(RigidBodyId body) const;

@@ -257,6 +257,17 @@ int BulletWorld::addHinge(const HingeDesc& desc) {
   return static_cast<int>(m_impl->joints.size()) - 1;
 }
 
+int BulletWorld::addFixedJoint(const FixedJointDesc& desc) {
+  btRigidBody& a = *m_impl->bodies[desc.bodyA.index];
+  btRigidBody& b = desc.bodyB ? *m_impl->bodies[desc.bodyB->index] : btTypedConstraint::getFixedBody();
+  // Frames: A's own, and where A is now in B's frame, so the joint holds the present pose.
+  const btTransform frameInB = b.getCenterOfMassTransform().inverse() * a.getCenterOfMassTransform();
+  auto joint = std::make_unique<btFixedConstraint>(a, b, btTransform::getIdentity(), frameInB);
+  m_impl->world.addConstraint(joint.get(), true);
+  m_impl->joints.push_back(std::move(joint));
+  return static_cast<int>(m_impl->joints.size()) - 1;
+}
+
 int BulletWorld::rigidBodyCount() const { return static_cast<int>(m_impl->bodies.size()); }
 
 void BulletWorld::predictRigidMotion(double timeStep) { m_impl->world.predict(timeStep); }

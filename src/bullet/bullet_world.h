@@ -39,6 +39,7 @@ class BulletWorld {
   // The descriptor is validated by the caller. Returns the body's index.
   int addRigidBody(const RigidBodyDesc& desc);
   int addHinge(const HingeDesc& desc);
+  int addFixedJoint(const FixedJointDesc& desc);
   int rigidBodyCount() const;
 
   // Stages of a step, in order.

@@ -1,0 +1,205 @@
+// Scene → scene file. Every field is written (defaults too, so a written file documents what the
+// scene does); nlohmann writes doubles with enough digits to read back the same bits.
+#include "scene/scene_names.h"
+
+#include <tandem/scene_file.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+
+namespace tandem {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+Json vec(const Vec3& v) { return Json::array({v.x(), v.y(), v.z()}); }
+
+Json shapeJson(const SceneRigidBody& body) {
+  const RigidShape& s = body.desc.shape;
+  Json shape{{"type", scene::nameOf(scene::kShapeNames, s.type)}};
+  switch (s.type) {
+    case ShapeType::Box: shape["half_extents"] = vec(s.halfExtents); break;
+    case ShapeType::Sphere: shape["radius"] = s.radius; break;
+    case ShapeType::Cylinder:
+    case ShapeType::Capsule:
+      shape["radius"] = s.radius;
+      shape["half_height"] = s.halfHeight;
+      break;
+    case ShapeType::Plane:
+      shape["normal"] = vec(s.planeNormal);
+      shape["offset"] = s.planeOffset;
+      break;
+    case ShapeType::ConvexHull:
+    case ShapeType::TriangleMesh: {
+      if (!body.shapeFile.empty()) {
+        shape["file"] = body.shapeFile;
+        break;
+      }
+      Json points = Json::array();
+      for (const Vec3& p : s.points) points.push_back(vec(p));
+      if (s.type == ShapeType::ConvexHull) {
+        shape["points"] = points;
+        break;
+      }
+      shape["vertices"] = points;
+      Json triangles = Json::array();
+      for (const auto& t : s.triangles) triangles.push_back({t[0], t[1], t[2]});
+      shape["triangles"] = triangles;
+      break;
+    }
+  }
+  return shape;
+}
+
+Json rigidJson(const SceneRigidBody& body) {
+  const RigidBodyDesc& d = body.desc;
+  const Quat& q = d.orientation;
+  Json out{{"name", d.name},
+           {"shape", shapeJson(body)},
+           {"mass", d.motion == MotionType::Dynamic ? d.mass : 0.0},
+           {"kinematic", d.motion == MotionType::Kinematic},
+           {"position", vec(d.position)},
+           {"orientation", {q.w(), q.x(), q.y(), q.z()}},
+           {"linear_velocity", vec(d.linearVelocity)},
+           {"angular_velocity", vec(d.angularVelocity)},
+           {"friction", d.friction},
+           {"restitution", d.restitution},
+           {"can_sleep", d.canSleep}};
+  return out;
+}
+
+Json jointJson(const SceneJoint& joint) {
+  Json out{{"type", scene::nameOf(scene::kJointNames, joint.kind)}, {"body_a", joint.bodyA}};
+  if (joint.bodyB) out["body_b"] = *joint.bodyB;
+  if (joint.kind == SceneJoint::Kind::Hinge) {
+    out["pivot"] = vec(joint.pivot);
+    out["axis"] = vec(joint.axis);
+  }
+  return out;
+}
+
+Json meshJson(const SceneMesh& mesh) {
+  using Kind = SceneMesh::Kind;
+  switch (mesh.kind) {
+    case Kind::Rope: return {{"type", "rope"}, {"start", vec(mesh.start)}, {"end", vec(mesh.end)}, {"nodes", mesh.nodes}};
+    case Kind::ClothGrid:
+      return {{"type", "cloth_grid"}, {"corner", vec(mesh.corner)}, {"side_u", vec(mesh.sideU)},
+              {"side_v", vec(mesh.sideV)}, {"columns", mesh.columns},  {"rows", mesh.rows}};
+    case Kind::TetBox:
+      return {{"type", "tet_box"},
+              {"min", vec(mesh.minCorner)},
+              {"max", vec(mesh.maxCorner)},
+              {"cells", {mesh.cells[0], mesh.cells[1], mesh.cells[2]}}};
+    case Kind::TetCylinder:
+      return {{"type", "tet_cylinder"}, {"base_centre", vec(mesh.baseCentre)},
+              {"radius", mesh.radius},  {"height", mesh.height},
+              {"rings", mesh.rings},    {"sectors", mesh.sectors},
+              {"layers", mesh.layers}};
+    case Kind::Obj: return {{"type", "obj"}, {"file", mesh.file}};
+    case Kind::TetGen: return {{"type", "tetgen"}, {"file", mesh.file}};
+  }
+  return {};
+}
+
+Json paradigmJson(const DeformableDesc& d) {
+  const ParadigmSettings& p = d.paradigm;
+  switch (p.type) {
+    case ParadigmType::MassSpring:
+      return {{"type", "mass_spring"},
+              {"spring_stiffness", d.springs.stiffness},
+              {"spring_damping", d.springs.damping},
+              {"implicit", d.springs.implicit}};
+    case ParadigmType::ShapeMatching:
+      return {{"type", "shape_matching"}, {"stiffness", p.stiffness}, {"damping", p.damping}};
+    case ParadigmType::PositionBased:
+      return {{"type", "position_based"}, {"stiffness", p.stiffness}, {"damping", p.damping}, {"iterations", p.iterations}};
+    case ParadigmType::CorotationalFem:
+      return {{"type", "corotational_fem"}, {"youngs_modulus", p.youngsModulus}, {"poisson_ratio", p.poissonRatio}};
+  }
+  return {};
+}
+
+// Unbounded forces are the default and have no JSON spelling: they are left out.
+void putMaxForce(Json& out, double maxForce) {
+  if (std::isfinite(maxForce)) out["max_force"] = maxForce;
+}
+
+Json deformableJson(const SceneDeformable& deformable) {
+  const DeformableDesc& d = deformable.desc;
+  Json out{{"name", d.name}, {"mesh", meshJson(deformable.mesh)}};
+  if (deformable.mass) out["mass"] = *deformable.mass;
+  if (deformable.density) out["density"] = *deformable.density;
+  out["paradigm"] = paradigmJson(d);
+  Json inextensibility{{"enabled", d.inextensibility.enabled},
+                       {"mode", scene::nameOf(scene::kInextensibilityModeNames, d.inextensibility.mode)},
+                       {"shear_edges", d.inextensibility.shearEdges}};
+  putMaxForce(inextensibility, d.inextensibility.maxForce);
+  out["inextensibility"] = inextensibility;
+  out["bending"] = {{"enabled", d.bending.enabled},
+                    {"max_force", d.bending.maxForce},
+                    {"frequency", d.bending.frequency},
+                    {"damping_ratio", d.bending.dampingRatio}};
+  out["collision"] = d.collision.enabled;
+  out["self_collision"] = d.collision.selfCollision;
+  out["thickness"] = d.collision.thickness;
+  out["friction"] = d.collision.friction;
+  out["damping"] = d.damping;
+  out["row_solver"] = scene::nameOf(scene::kRowSolverNames, d.rowSolver);
+  out["initial_velocity"] = vec(deformable.initialVelocity);
+  Json fixed = Json::array();
+  for (const SceneFixedNodes& f : deformable.fixed) {
+    Json entry;
+    if (f.region)
+      entry["region"] = {{"min", vec((*f.region)[0])}, {"max", vec((*f.region)[1])}};
+    else
+      entry["nodes"] = f.nodes;
+    putMaxForce(entry, f.maxForce);
+    fixed.push_back(entry);
+  }
+  out["fixed"] = fixed;
+  return out;
+}
+
+Json anchorJson(const SceneAnchor& anchor) {
+  Json out{{"deformable", anchor.deformable}, {"body", anchor.body}};
+  if (anchor.node) out["node"] = *anchor.node;
+  if (anchor.nearest) out["nearest"] = vec(*anchor.nearest);
+  if (anchor.face) {
+    out["face"] = *anchor.face;
+    out["barycentric"] = {anchor.barycentric[0], anchor.barycentric[1], anchor.barycentric[2]};
+  }
+  if (anchor.localPoint) out["local_point"] = vec(*anchor.localPoint);
+  putMaxForce(out, anchor.maxForce);
+  return out;
+}
+
+}  // namespace
+
+std::string sceneToJson(const Scene& scene) {
+  const SolverSettings& solver = scene.settings.solver;
+  Json out{{"format", kSceneFormatVersion},
+           {"name", scene.name},
+           {"description", scene.description},
+           {"time_step", scene.timeStep},
+           {"duration", scene.duration},
+           {"gravity", vec(scene.settings.gravity)},
+           {"divergence_speed", scene.settings.divergenceSpeed},
+           {"solver",
+            {{"iterations", solver.iterations},
+             {"baumgarte", solver.baumgarte},
+             {"warm_start", solver.warmStart},
+             {"friction_model", scene::nameOf(scene::kFrictionModelNames, solver.friction)},
+             {"contact_slop", solver.contactSlop}}}};
+  Json& rigid = out["rigid_bodies"] = Json::array();
+  for (const SceneRigidBody& body : scene.rigidBodies) rigid.push_back(rigidJson(body));
+  Json& joints = out["joints"] = Json::array();
+  for (const SceneJoint& joint : scene.joints) joints.push_back(jointJson(joint));
+  Json& deformables = out["deformables"] = Json::array();
+  for (const SceneDeformable& deformable : scene.deformables) deformables.push_back(deformableJson(deformable));
+  Json& anchors = out["anchors"] = Json::array();
+  for (const SceneAnchor& anchor : scene.anchors) anchors.push_back(anchorJson(anchor));
+  return out.dump(2) + "\n";
+}
+
+}  // namespace tandem

@@ -1,0 +1,428 @@
+// Scene files: every shipped scene loads, a scene written and read back steps bit for bit the
+// same, bad files are refused with a message naming file, JSON path and problem (and the
+// command exits non-zero), and what the format adds to the API (fixed joints, anchors by
+// nearest node or face, masses from density, recording) does what it says.
+#include <tandem/record.h>
+#include <tandem/scene_file.h>
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace tandem {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path tempDir() {
+  const fs::path dir = fs::temp_directory_path() / "tandem_scene_tests";
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string writeFile(const std::string& name, const std::string& text) {
+  const fs::path path = tempDir() / name;
+  std::ofstream(path) << text;
+  return path.string();
+}
+
+TEST(SceneFile, EveryShippedSceneValidates) {
+  int count = 0;
+  for (const auto& entry : fs::directory_iterator(TANDEM_SOURCE_DIR "/scenes")) {
+    if (entry.path().extension() != ".json") continue;
+    ++count;
+    Result<Scene> scene = loadScene(entry.path().string());
+    ASSERT_TRUE(scene.ok()) << scene.message();
+    World world;
+    Status built = buildScene(*scene, world);
+    EXPECT_TRUE(built.ok()) << built.message();
+    EXPECT_FALSE(scene->description.empty()) << entry.path();
+  }
+  EXPECT_GE(count, 7);  // the paper's three and the small ones
+}
+
+// A scene made through the API with one of everything the format has.
+Scene everythingScene() {
+  Scene scene;
+  scene.name = "everything";
+  scene.timeStep = 1.0 / 60;
+  scene.settings.solver.iterations = 6;
+  scene.settings.solver.friction = FrictionModel::Pressure;
+  scene.settings.gravity = {0.1, -9.7, 0.05};
+
+  SceneRigidBody ground;
+  ground.desc.name = "ground";
+  ground.desc.shape = RigidShape::plane({0, 1, 0}, 0);
+  ground.desc.motion = MotionType::Static;
+  SceneRigidBody wheel;
+  wheel.desc.name = "wheel";
+  wheel.desc.shape = RigidShape::cylinder(0.2, 0.05);
+  wheel.desc.position = {0, 1.5, 0};
+  wheel.desc.orientation = Quat(Eigen::AngleAxisd(M_PI / 2, Vec3::UnitX()));
+  SceneRigidBody box;
+  box.desc.name = "box";
+  box.desc.shape = RigidShape::box({0.1, 0.1, 0.1});
+  box.desc.mass = 0.7;
+  box.desc.position = {0.5, 0.6, 0};
+  box.desc.angularVelocity = {0, 1, 0};
+  SceneRigidBody hull;
+  hull.desc.name = "hull";
+  hull.desc.shape = RigidShape::convexHull({{-0.1, 0, -0.1}, {0.1, 0, -0.1}, {0, 0, 0.1}, {0, 0.15, 0}});
+  hull.desc.position = {-0.6, 0.3, 0.2};
+  SceneRigidBody cap;
+  cap.desc.name = "cap";
+  cap.desc.shape = RigidShape::box({0.05, 0.02, 0.05});
+  cap.desc.mass = 0.1;
+  cap.desc.position = {-0.6, 0.47, 0.2};
+  scene.rigidBodies = {ground, wheel, box, hull, cap};
+
+  SceneJoint hinge;
+  hinge.bodyA = "wheel";
+  hinge.pivot = {0, 1.5, 0};
+  hinge.axis = {0, 0, 1};
+  SceneJoint fixed;
+  fixed.kind = SceneJoint::Kind::Fixed;
+  fixed.bodyA = "cap";
+  fixed.bodyB = "hull";
+  scene.joints = {hinge, fixed};
+
+  SceneDeformable rope;
+  rope.desc.name = "rope";
+  rope.mesh.kind = SceneMesh::Kind::Rope;
+  rope.mesh.start = {0.3, 1.5, 0};
+  rope.mesh.end = {0.5, 0.75, 0};
+  rope.mesh.nodes = 12;
+  rope.density = 0.1;
+  rope.desc.inextensibility.enabled = true;
+  SceneDeformable cloth;
+  cloth.desc.name = "cloth";
+  cloth.mesh.corner = {-0.3, 1.0, -0.3};
+  cloth.mesh.sideU = {0.6, 0, 0};
+  cloth.mesh.sideV = {0, 0, 0.6};
+  cloth.mesh.columns = 7;
+  cloth.mesh.rows = 7;
+  cloth.mass = 0.2;
+  cloth.desc.inextensibility.enabled = true;
+  cloth.desc.bending.enabled = true;
+  cloth.desc.bending.maxForce = 0.2;
+  cloth.initialVelocity = {0, 0, 0.3};
+  SceneFixedNodes corners;
+  corners.nodes = {0, 6};
+  cloth.fixed.push_back(corners);
+  SceneDeformable jelly;
+  jelly.desc.name = "jelly";
+  jelly.mesh.kind = SceneMesh::Kind::TetCylinder;
+  jelly.mesh.baseCentre = {-0.2, 0.005, -0.4};
+  jelly.mesh.rings = 1;
+  jelly.mesh.sectors = 6;
+  jelly.mesh.layers = 2;
+  jelly.density = 1000;
+  jelly.desc.paradigm.type = ParadigmType::CorotationalFem;
+  jelly.desc.paradigm.youngsModulus = 20e3;
+  SceneFixedNodes base;  // the jelly's bottom layer, by region
+  base.region = std::array<Vec3, 2>{Vec3(-1, 0, -1), Vec3(1, 0.01, 1)};
+  base.maxForce = 50;
+  jelly.fixed.push_back(base);
+  scene.deformables = {rope, cloth, jelly};
+
+  SceneAnchor toWheel;
+  toWheel.deformable = "rope";
+  toWheel.node = 0;
+  toWheel.body = "wheel";
+  SceneAnchor toBox;
+  toBox.deformable = "rope";
+  toBox.nearest = Vec3(0.5, 0.7, 0);
+  toBox.body = "box";
+  toBox.maxForce = 100;
+  SceneAnchor faceToBox;
+  faceToBox.deformable = "cloth";
+  faceToBox.face = 30;
+  faceToBox.barycentric = {0.2, 0.3, 0.5};
+  faceToBox.body = "hull";
+  faceToBox.localPoint = Vec3(0, 0.2, 0);
+  scene.anchors = {toWheel, toBox, faceToBox};
+  return scene;
+}
+
+std::vector<Vec3> allNodes(const World& world) {
+  std::vector<Vec3> nodes;
+  for (int d = 0; d < world.deformableCount(); ++d)
+    for (const Vec3& x : world.nodePositions(DeformableId{d})) nodes.push_back(x);
+  return nodes;
+}
+
+TEST(SceneFile, WrittenAndReadBackStepsBitForBit) {
+  const Scene original = everythingScene();
+  const std::string json = sceneToJson(original);
+  Result<Scene> reread = parseScene(json, "written.json", ".");
+  ASSERT_TRUE(reread.ok()) << reread.message() << "\n" << json;
+  EXPECT_EQ(sceneToJson(*reread), json);  // a fixed point of writing and reading
+
+  World a, b;
+  ASSERT_TRUE(buildScene(original, a).ok()) << buildScene(original, a).message();
+  ASSERT_TRUE(buildScene(*reread, b).ok());
+  for (int step = 0; step < 60; ++step) {
+    ASSERT_TRUE(a.step(original.timeStep).ok());
+    ASSERT_TRUE(b.step(reread->timeStep).ok());
+  }
+  const std::vector<Vec3> nodesA = allNodes(a), nodesB = allNodes(b);
+  ASSERT_EQ(nodesA.size(), nodesB.size());
+  for (size_t n = 0; n < nodesA.size(); ++n) EXPECT_EQ(nodesA[n], nodesB[n]) << "node " << n;
+  for (int r = 0; r < a.rigidBodyCount(); ++r) {
+    EXPECT_EQ(a.rigidPosition(RigidBodyId{r}), b.rigidPosition(RigidBodyId{r}));
+    EXPECT_EQ(a.rigidOrientation(RigidBodyId{r}).coeffs(), b.rigidOrientation(RigidBodyId{r}).coeffs());
+  }
+  // And it did something: the box hangs on the rope under the wheel, which has turned.
+  const RigidBodyId wheel = *a.findRigidBody("wheel");
+  EXPECT_GT(a.rigidAngularVelocity(wheel).norm(), 0.1);
+}
+
+TEST(SceneFile, MassesComeFromDensityOrTotalMass) {
+  Scene scene = everythingScene();
+  World world;
+  ASSERT_TRUE(buildScene(scene, world).ok());
+  auto total = [&](const char* name) {
+    double sum = 0;
+    for (double w : world.nodeInverseMasses(*world.findDeformable(name))) sum += 1.0 / w;
+    return sum;
+  };
+  // The rope: 0.1 kg/m over its length; the cloth: 0.2 kg in all (its two pinned corners
+  // included: fixed points keep their mass).
+  EXPECT_NEAR(total("rope"), 0.1 * (scene.deformables[0].mesh.end - scene.deformables[0].mesh.start).norm(), 1e-12);
+  EXPECT_NEAR(total("cloth"), 0.2, 1e-12);
+  // The jelly: 1000 kg/m³ times its tets' volume, which for 6 sectors is the hexagonal prism's.
+  const double hexagon = 1.5 * std::sqrt(3.0) * 0.1 * 0.1;
+  EXPECT_NEAR(total("jelly"), 1000 * hexagon * 0.2, 1e-9);
+}
+
+TEST(SceneFile, AnchorsFindTheNearestNodeAndTheFacePoint) {
+  Scene scene = everythingScene();
+  World world;
+  ASSERT_TRUE(buildScene(scene, world).ok());
+  // The rope's nodes run from (0.3, 1.5) to (0.5, 0.75) in 11 gaps: (0.5, 0.7) is nearest the last.
+  const AnchorState nearest = world.anchorState(AnchorId{1});
+  EXPECT_LT((nearest.worldPointOnDeformable - world.nodePositions(*world.findDeformable("rope"))[11]).norm(), 1e-12);
+  const auto& triangle = world.restMesh(*world.findDeformable("cloth")).triangles[30];
+  const std::span<const Vec3> x = world.nodePositions(*world.findDeformable("cloth"));
+  const Vec3 expected = 0.2 * x[triangle[0]] + 0.3 * x[triangle[1]] + 0.5 * x[triangle[2]];
+  EXPECT_LT((world.anchorState(AnchorId{2}).worldPointOnDeformable - expected).norm(), 1e-12);
+  // Its point on the hull is the given local point.
+  const RigidBodyId hull = *world.findRigidBody("hull");
+  EXPECT_LT((world.anchorState(AnchorId{2}).worldPointOnBody - (world.rigidPosition(hull) + Vec3(0, 0.2, 0))).norm(), 1e-12);
+}
+
+TEST(SceneFile, FixedJointsHoldTheirPose) {
+  Scene scene;
+  // Bullet solves joints iteratively: a 0.5 m lever on two fixed joints sags 14 cm at 4
+  // iterations, 2 cm at 20 and nothing at 100.
+  scene.settings.solver.iterations = 100;
+  SceneRigidBody a, b;
+  a.desc.name = "a";
+  a.desc.shape = RigidShape::box({0.1, 0.1, 0.1});
+  a.desc.position = {0, 2, 0};
+  b.desc = a.desc;
+  b.desc.name = "b";
+  b.desc.position = {0.5, 2.2, 0};
+  b.desc.orientation = Quat(Eigen::AngleAxisd(0.3, Vec3::UnitZ()));
+  scene.rigidBodies = {a, b};
+  SceneJoint toWorld, between;
+  toWorld.kind = between.kind = SceneJoint::Kind::Fixed;
+  toWorld.bodyA = "a";
+  between.bodyA = "b";
+  between.bodyB = "a";
+  scene.joints = {toWorld, between};
+  World world;
+  ASSERT_TRUE(buildScene(scene, world).ok());
+  for (int step = 0; step < 120; ++step) ASSERT_TRUE(world.step(1.0 / 60).ok());
+  EXPECT_LT((world.rigidPosition(RigidBodyId{0}) - Vec3(0, 2, 0)).norm(), 0.001);
+  EXPECT_LT((world.rigidPosition(RigidBodyId{1}) - Vec3(0.5, 2.2, 0)).norm(), 0.003);
+  EXPECT_LT(world.rigidOrientation(RigidBodyId{1}).angularDistance(b.desc.orientation), 0.02);
+}
+
+TEST(SceneFile, RecordsEveryStepInColumnsThatReadBack) {
+  const Scene scene = everythingScene();
+  World world;
+  ASSERT_TRUE(buildScene(scene, world).ok());
+  const std::string path = (tempDir() / "record.csv").string();
+  {
+    Result<StepRecorder> recorder = StepRecorder::open(path, true);
+    ASSERT_TRUE(recorder.ok());
+    ASSERT_TRUE(recorder->write(world).ok());
+    for (int step = 0; step < 3; ++step) {
+      ASSERT_TRUE(world.step(scene.timeStep).ok());
+      ASSERT_TRUE(recorder->write(world).ok());
+    }
+  }
+  std::ifstream file(path);
+  std::string line;
+  std::getline(file, line);
+  EXPECT_EQ(line, "step,time,kind,name,index,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz");
+  int rigidRows = 0, nodeRows = 0;
+  std::string last;
+  while (std::getline(file, line)) {
+    std::stringstream fields(line);
+    std::vector<std::string> cells;
+    for (std::string cell; std::getline(fields, cell, ',');) cells.push_back(cell);
+    if (cells.size() == 17) cells.push_back("");  // a trailing empty field
+    ASSERT_EQ(cells.size(), 18u) << line;
+    (cells[2] == "rigid" ? rigidRows : nodeRows)++;
+    last = line;
+    if (cells[0] == "3" && cells[2] == "rigid" && cells[3] == "box") {
+      const RigidBodyId box = *world.findRigidBody("box");
+      EXPECT_EQ(std::stod(cells[6]), world.rigidPosition(box).y());  // to the last bit
+      EXPECT_EQ(std::stod(cells[17]), world.rigidAngularVelocity(box).z());
+    }
+  }
+  EXPECT_EQ(rigidRows, 4 * world.rigidBodyCount());
+  EXPECT_EQ(nodeRows, 4 * static_cast<int>(allNodes(world).size()));
+  EXPECT_EQ(last.substr(0, 2), "3,");
+  EXPECT_FALSE(StepRecorder::open("/no/such/folder/record.csv", false).ok());
+}
+
+// ---- Bad files --------------------------------------------------------------------------------
+
+struct BadScene {
+  const char* name;
+  std::string json;
+  std::string message;  // what the error must say (after the file name)
+};
+
+// A valid scene to break: {BODIES} and {DEFORMABLES} and {ANCHORS} are filled per case.
+std::string scene(const std::string& rigid, const std::string& deformables = "", const std::string& anchors = "",
+                  const std::string& extra = "") {
+  return R"({"format": 1, "rigid_bodies": [)" + rigid + R"(], "deformables": [)" + deformables +
+         R"(], "anchors": [)" + anchors + "]" + extra + "}";
+}
+const std::string kBox = R"({"name": "box", "shape": {"type": "box", "half_extents": [0.1, 0.1, 0.1]}})";
+const std::string kRope =
+    R"({"name": "rope", "mesh": {"type": "rope", "start": [0, 1, 0], "end": [0, 0, 0], "nodes": 5}, "mass": 0.1})";
+std::string rope(const std::string& fields) {
+  return R"({"name": "rope", "mesh": {"type": "rope", "start": [0, 1, 0], "end": [0, 0, 0], "nodes": 5}, )" + fields + "}";
+}
+std::string jelly(const std::string& paradigm) {
+  return R"({"name": "jelly", "mesh": {"type": "tet_cylinder", "base_centre": [0, 0, 0], "radius": 0.1, "height": 0.2, "rings": 1, "sectors": 6, "layers": 2}, "density": 1000, "paradigm": )" +
+         paradigm + "}";
+}
+
+const std::vector<BadScene> kBadScenes{
+    {"syntax", R"({"format": 1,})", "not valid JSON: parse error at line 1, column 14"},
+    {"nan", R"({"format": 1, "time_step": NaN})", "not valid JSON: parse error at line 1, column 28"},
+    {"not_object", "[1, 2]", "/: must be an object, got an array"},
+    {"no_format", "{}", "/: missing field 'format'"},
+    {"format_2", R"({"format": 2})", "/format: this Tandem reads format 1, the file has 2"},
+    {"format_string", R"({"format": "1"})", "/format: must be an integer, got a string"},
+    {"unknown_top", R"({"format": 1, "gravty": [0, -9.81, 0]})", "/gravty: unknown field 'gravty'"},
+    {"duplicate", R"({"format": 1, "time_step": 0.01, "time_step": 0.02})", "field 'time_step' appears twice"},
+    {"time_step_zero", R"({"format": 1, "time_step": 0})", "/time_step: must be in (0, 1], got 0"},
+    {"time_step_huge", R"({"format": 1, "time_step": 5})", "/time_step: must be in (0, 1], got 5"},
+    {"gravity_short", R"({"format": 1, "gravity": [0, -9.81]})", "/gravity: must be an array of 3 numbers"},
+    {"gravity_overflow", R"({"format": 1, "gravity": [0, -1e999, 0]})", "not valid JSON: number overflow parsing '-1e999'"},
+    {"iterations_zero", R"({"format": 1, "solver": {"iterations": 0}})", "/solver/iterations: must be in [1, 1000], got 0"},
+    {"iterations_real", R"({"format": 1, "solver": {"iterations": 2.5}})", "/solver/iterations: must be an integer, got a number"},
+    {"friction_model", R"({"format": 1, "solver": {"friction_model": "magic"}})",
+     "/solver/friction_model: unknown value 'magic' (expected one of: coulomb, pressure)"},
+    {"negative_mass", scene(R"({"name": "box", "shape": {"type": "box", "half_extents": [0.1, 0.1, 0.1]}, "mass": -1})"),
+     "/rigid_bodies/0/mass: must be >= 0, got -1"},
+    {"no_shape", scene(R"({"name": "box"})"), "/rigid_bodies/0: missing field 'shape'"},
+    {"shape_type", scene(R"({"name": "box", "shape": {"type": "cube"}})"),
+     "/rigid_bodies/0/shape/type: unknown value 'cube' (expected one of: box, sphere, cylinder, capsule, plane, "
+     "convex_hull, triangle_mesh)"},
+    {"flat_box", scene(R"({"name": "box", "shape": {"type": "box", "half_extents": [0.1, 0, 0.1]}})"),
+     "/rigid_bodies/0/shape/half_extents: must all be > 0"},
+    {"sphere_field", scene(R"({"name": "ball", "shape": {"type": "sphere", "radius": 1, "half_extents": [1, 1, 1]}})"),
+     "/rigid_bodies/0/shape/half_extents: unknown field 'half_extents'"},
+    {"dynamic_plane", scene(R"({"name": "ground", "shape": {"type": "plane", "normal": [0, 1, 0]}, "mass": 1})"),
+     "/rigid_bodies/0/mass: a plane or triangle mesh must be static (mass 0) or kinematic"},
+    {"bad_quaternion", scene(R"({"name": "box", "shape": {"type": "sphere", "radius": 1}, "orientation": [1, 1, 0, 0]})"),
+     "/rigid_bodies/0/orientation: must be a unit quaternion [w, x, y, z], its norm is 1.41421"},
+    {"two_orientations",
+     scene(R"({"name": "box", "shape": {"type": "sphere", "radius": 1}, "orientation": [1, 0, 0, 0], "euler_degrees": [0, 0, 0]})"),
+     "/rigid_bodies/0/euler_degrees: give either 'orientation' or 'euler_degrees', not both"},
+    {"missing_hull_file", scene(R"({"name": "hull", "shape": {"type": "convex_hull", "file": "no_such.obj"}})"),
+     "/rigid_bodies/0/shape/file: "},
+    {"same_names", scene(kBox + ", " + kBox), "/rigid_bodies/1/name: another rigid body is already named 'box'"},
+    {"hinge_unknown_body", scene(kBox, "", "", R"(, "joints": [{"type": "hinge", "body_a": "wheel", "pivot": [0, 0, 0], "axis": [0, 0, 1]}])"),
+     "/joints/0/body_a: no rigid body is named 'wheel'"},
+    {"hinge_zero_axis", scene(kBox, "", "", R"(, "joints": [{"type": "hinge", "body_a": "box", "pivot": [0, 0, 0], "axis": [0, 0, 0]}])"),
+     "/joints/0/axis: must not be zero"},
+    {"no_mass", scene("", R"({"name": "rope", "mesh": {"type": "rope", "start": [0, 1, 0], "end": [0, 0, 0], "nodes": 5}})"),
+     "/deformables/0: give either 'mass' (kg, in all) or 'density'"},
+    {"one_node_rope", scene("", R"({"name": "rope", "mesh": {"type": "rope", "start": [0, 1, 0], "end": [0, 0, 0], "nodes": 1}, "mass": 1})"),
+     "/deformables/0/mesh/nodes: must be in [2, 100000], got 1"},
+    {"zero_length_rope", scene("", R"({"name": "rope", "mesh": {"type": "rope", "start": [0, 1, 0], "end": [0, 1, 0], "nodes": 3}, "mass": 1})"),
+     "/deformables/0/mesh: "},
+    {"mesh_type", scene("", R"({"name": "rope", "mesh": {"type": "string"}, "mass": 1})"),
+     "/deformables/0/mesh/type: unknown value 'string'"},
+    {"missing_obj", scene("", R"({"name": "sheet", "mesh": {"type": "obj", "file": "missing.obj"}, "mass": 1})"),
+     "/deformables/0/mesh: "},
+    {"missing_tetgen", scene("", R"({"name": "blob", "mesh": {"type": "tetgen", "file": "missing"}, "density": 1000})"),
+     "/deformables/0/mesh: "},
+    {"youngs_negative", scene("", jelly(R"({"type": "corotational_fem", "youngs_modulus": -5})")),
+     "/deformables/0/paradigm/youngs_modulus: must be > 0, got -5"},
+    {"poisson_half", scene("", jelly(R"({"type": "corotational_fem", "poisson_ratio": 0.5})")),
+     "/deformables/0/paradigm/poisson_ratio: must be in [0, 0.4999], got 0.5"},
+    {"stiffness_zero", scene("", jelly(R"({"type": "shape_matching", "stiffness": 0})")),
+     "/deformables/0/paradigm/stiffness: must be in (0, 1], got 0"},
+    {"damping_above_one", scene("", jelly(R"({"type": "position_based", "damping": 1.5})")),
+     "/deformables/0/paradigm/damping: must be in [0, 1], got 1.5"},
+    {"field_of_other_paradigm", scene("", jelly(R"({"type": "shape_matching", "youngs_modulus": 1000})")),
+     "/deformables/0/paradigm/youngs_modulus: unknown field 'youngs_modulus'"},
+    {"fem_on_rope", scene("", rope(R"("mass": 1, "paradigm": {"type": "corotational_fem"})")),
+     "/deformables/0: deformable 'rope': co-rotational FEM needs a tetrahedral mesh"},
+    {"negative_density", scene("", rope(R"("density": -2)")), "/deformables/0/density: must be > 0, got -2"},
+    {"negative_thickness", scene("", rope(R"("mass": 1, "thickness": -0.1)")), "/deformables/0/thickness: must be >= 0, got -0.1"},
+    {"inextensibility_mode", scene("", rope(R"("mass": 1, "inextensibility": {"mode": "rigid"})")),
+     "/deformables/0/inextensibility/mode: unknown value 'rigid'"},
+    {"fixed_out_of_range", scene("", rope(R"("mass": 1, "fixed": [{"nodes": [0, 7]}])")),
+     "/deformables/0/fixed/0/nodes/1: node 7 is out of range (the mesh has 5 nodes)"},
+    {"fixed_empty_region", scene("", rope(R"("mass": 1, "fixed": [{"region": {"min": [5, 5, 5], "max": [6, 6, 6]}}])")),
+     "/deformables/0/fixed/0/region: holds no node of the mesh"},
+    {"anchor_unknown_deformable", scene(kBox, kRope, R"({"deformable": "cloth", "node": 0, "body": "box"})"),
+     "/anchors/0/deformable: no deformable is named 'cloth'"},
+    {"anchor_node_out_of_range", scene(kBox, kRope, R"({"deformable": "rope", "node": 9, "body": "box"})"),
+     "/anchors/0/node: node 9 is out of range (the mesh has 5 nodes)"},
+    {"anchor_two_ways", scene(kBox, kRope, R"({"deformable": "rope", "node": 0, "nearest": [0, 0, 0], "body": "box"})"),
+     "/anchors/0: give exactly one of 'node' (an index), 'nearest' (a point) or 'face' (a triangle index)"},
+    {"anchor_face_on_rope", scene(kBox, kRope, R"({"deformable": "rope", "face": 0, "body": "box"})"),
+     "/anchors/0/face: triangle 0 is out of range (the mesh has 0 triangles)"},
+    {"anchor_barycentric_sum", scene(kBox, kRope, R"({"deformable": "rope", "face": 0, "barycentric": [0.5, 0.5, 0.5], "body": "box"})"),
+     "/anchors/0/barycentric: must sum to 1, they sum to 1.5"},
+};
+
+void PrintTo(const BadScene& bad, std::ostream* out) { *out << bad.name; }
+
+class BadSceneFile : public testing::TestWithParam<BadScene> {};
+
+TEST_P(BadSceneFile, IsRefusedWithItsMessage) {
+  const BadScene& bad = GetParam();
+  const std::string path = writeFile(std::string(bad.name) + ".json", bad.json);
+  Result<Scene> scene = loadScene(path);
+  World world;
+  const Status status = scene ? buildScene(*scene, world) : scene.status();
+  ASSERT_FALSE(status.ok());
+  EXPECT_EQ(status.message().rfind(path + ": ", 0), 0u) << status.message();
+  EXPECT_NE(status.message().find(bad.message), std::string::npos) << status.message();
+  // The command says the same on stderr and exits non-zero.
+  const std::string command = std::string(TANDEM_CLI) + " validate " + path + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string output;
+  char buffer[512];
+  while (size_t n = fread(buffer, 1, sizeof buffer, pipe)) output.append(buffer, n);
+  const int exitStatus = pclose(pipe);
+  EXPECT_NE(exitStatus, 0);
+  EXPECT_NE(output.find(bad.message), std::string::npos) << output;
+}
+
+INSTANTIATE_TEST_SUITE_P(Table, BadSceneFile, testing::ValuesIn(kBadScenes),
+                         [](const testing::TestParamInfo<BadScene>& param) { return std::string(param.param.name); });
+
+TEST(SceneFile, AMissingFileIsNamed) {
+  EXPECT_EQ(loadScene("/no/such/scene.json").message(), "/no/such/scene.json: cannot open the scene file");
+}
+
+}  // namespace
+}  // namespace tandem
