@@ -58,10 +58,8 @@ std::vector<Vec3> readPoints(const Json& value, const std::string& path) {
 void readShape(ObjectReader& body, SceneRigidBody& out) {
   ObjectReader shape(body.required("shape"), body.fieldPath("shape"));
   RigidShape& s = out.desc.shape;
-  s.type = shape.choice<ShapeType>("type",
-                                   scene::kShapeNames,
-                                   ShapeType::Box);
   shape.required("type");
+  s.type = shape.choice("type", scene::kShapeNames, ShapeType::Box);
   auto positiveRequired = [&](const std::string& key) {
     shape.required(key);
     return shape.positive(key, 0);
@@ -139,8 +137,7 @@ SceneJoint readJoint(const Json& value, const std::string& path) {
   ObjectReader joint(value, path);
   SceneJoint out;
   joint.required("type");
-  out.kind = joint.choice<SceneJoint::Kind>("type", scene::kJointNames,
-                                            SceneJoint::Kind::Hinge);
+  out.kind = joint.choice("type", scene::kJointNames, SceneJoint::Kind::Hinge);
   out.bodyA = joint.string("body_a");
   if (joint.has("body_b")) out.bodyB = joint.string("body_b");
   if (out.kind == SceneJoint::Kind::Hinge) {
@@ -157,9 +154,7 @@ SceneMesh readMesh(const Json& value, const std::string& path) {
   SceneMesh out;
   using Kind = SceneMesh::Kind;
   mesh.required("type");
-  out.kind = mesh.choice<Kind>("type",
-                               scene::kMeshNames,
-                               Kind::ClothGrid);
+  out.kind = mesh.choice("type", scene::kMeshNames, Kind::ClothGrid);
   constexpr int kMaxCount = 100000;
   auto count = [&](const std::string& key, int low) {
     mesh.required(key);
@@ -212,9 +207,7 @@ void readParadigm(ObjectReader& deformable, SceneDeformable& out) {
   ObjectReader paradigm(deformable.required("paradigm"), deformable.fieldPath("paradigm"));
   ParadigmSettings& p = out.desc.paradigm;
   paradigm.required("type");
-  p.type = paradigm.choice<ParadigmType>("type",
-                                         scene::kParadigmNames,
-                                         ParadigmType::MassSpring);
+  p.type = paradigm.choice("type", scene::kParadigmNames, ParadigmType::MassSpring);
   switch (p.type) {
     case ParadigmType::MassSpring:
       out.desc.springs.stiffness = paradigm.nonNegative("spring_stiffness", 0.0);
@@ -241,9 +234,7 @@ void readRowSettings(ObjectReader& deformable, SceneDeformable& out) {
     ObjectReader inextensibility(deformable.required("inextensibility"), deformable.fieldPath("inextensibility"));
     InextensibilitySettings& s = out.desc.inextensibility;
     s.enabled = inextensibility.boolean("enabled", true);
-    s.mode = inextensibility.choice<InextensibilityMode>("mode",
-                                                         scene::kInextensibilityModeNames,
-                                                         s.mode);
+    s.mode = inextensibility.choice("mode", scene::kInextensibilityModeNames, s.mode);
     s.maxForce = inextensibility.positive("max_force", s.maxForce);
     s.shearEdges = inextensibility.boolean("shear_edges", s.shearEdges);
     inextensibility.finish();
@@ -297,9 +288,7 @@ SceneDeformable readDeformable(const Json& value, const std::string& path) {
   d.collision.thickness = deformable.nonNegative("thickness", d.collision.thickness);
   d.collision.friction = deformable.nonNegative("friction", d.collision.friction);
   d.damping = deformable.nonNegative("damping", d.damping);
-  d.rowSolver = deformable.choice<RowSolverKind>(
-      "row_solver", scene::kRowSolverNames,
-      d.rowSolver);
+  d.rowSolver = deformable.choice("row_solver", scene::kRowSolverNames, d.rowSolver);
   out.initialVelocity = deformable.vec3("initial_velocity", Vec3::Zero());
   forEachElement(deformable, "fixed",
                  [&](const Json& element, const std::string& at) { out.fixed.push_back(readFixedNodes(element, at)); });
@@ -346,9 +335,7 @@ void readSolver(ObjectReader& root, Scene& out) {
   s.iterations = solver.integer("iterations", s.iterations, 1, 1000);
   s.baumgarte = solver.numberIn("baumgarte", s.baumgarte, 0.0, 1.0);
   s.warmStart = solver.boolean("warm_start", s.warmStart);
-  s.friction = solver.choice<FrictionModel>("friction_model",
-                                            scene::kFrictionModelNames,
-                                            s.friction);
+  s.friction = solver.choice("friction_model", scene::kFrictionModelNames, s.friction);
   s.contactSlop = solver.nonNegative("contact_slop", s.contactSlop);
   solver.finish();
 }
