@@ -58,6 +58,13 @@ void printReport(const StepReport& report, const std::vector<double>& stageTotal
   std::printf("\n");
 }
 
+int nodeCount(const tandem::World& world) {
+  int nodes = 0;
+  for (int d = 0; d < world.deformableCount(); ++d)
+    nodes += static_cast<int>(world.nodePositions(tandem::DeformableId{d}).size());
+  return nodes;
+}
+
 // What `run` needs to know about a scene besides the world it built.
 struct SceneInfo {
   std::string name;
@@ -122,9 +129,7 @@ int run(const RunOptions& options) {
     recorder.emplace(std::move(opened).value());
   }
 
-  int nodes = 0;
-  for (int d = 0; d < world.deformableCount(); ++d)
-    nodes += static_cast<int>(world.nodePositions(tandem::DeformableId{d}).size());
+  const int nodes = nodeCount(world);
   if (!options.quiet)
     std::printf("Scene '%s': %s\n  %d deformable bodies (%d nodes), %d rigid bodies; h = %.4g s, %d iterations\n",
                 scene->name.c_str(), scene->description.c_str(), world.deformableCount(),
@@ -194,11 +199,8 @@ int validate(const std::vector<std::string>& files) {
       ++failures;
       continue;
     }
-    int nodes = 0;
-    for (int d = 0; d < world.deformableCount(); ++d)
-      nodes += static_cast<int>(world.nodePositions(tandem::DeformableId{d}).size());
     std::printf("%s: ok (%d rigid bodies, %d deformables with %d nodes, %zu joints, %zu anchors)\n", file.c_str(),
-                world.rigidBodyCount(), world.deformableCount(), nodes, scene->joints.size(), scene->anchors.size());
+                world.rigidBodyCount(), world.deformableCount(), nodeCount(world), scene->joints.size(), scene->anchors.size());
   }
   return failures ? 1 : 0;
 }

@@ -79,45 +79,62 @@ Json jointJson(const SceneJoint& joint) {
   return out;
 }
 
+// "type" from the table the reader reads it with, then the kind's own fields.
 Json meshJson(const SceneMesh& mesh) {
   using Kind = SceneMesh::Kind;
+  Json out{{"type", scene::nameOf(scene::kMeshNames, mesh.kind)}};
   switch (mesh.kind) {
-    case Kind::Rope: return {{"type", "rope"}, {"start", vec(mesh.start)}, {"end", vec(mesh.end)}, {"nodes", mesh.nodes}};
+    case Kind::Rope:
+      out["start"] = vec(mesh.start);
+      out["end"] = vec(mesh.end);
+      out["nodes"] = mesh.nodes;
+      break;
     case Kind::ClothGrid:
-      return {{"type", "cloth_grid"}, {"corner", vec(mesh.corner)}, {"side_u", vec(mesh.sideU)},
-              {"side_v", vec(mesh.sideV)}, {"columns", mesh.columns},  {"rows", mesh.rows}};
+      out["corner"] = vec(mesh.corner);
+      out["side_u"] = vec(mesh.sideU);
+      out["side_v"] = vec(mesh.sideV);
+      out["columns"] = mesh.columns;
+      out["rows"] = mesh.rows;
+      break;
     case Kind::TetBox:
-      return {{"type", "tet_box"},
-              {"min", vec(mesh.minCorner)},
-              {"max", vec(mesh.maxCorner)},
-              {"cells", {mesh.cells[0], mesh.cells[1], mesh.cells[2]}}};
+      out["min"] = vec(mesh.minCorner);
+      out["max"] = vec(mesh.maxCorner);
+      out["cells"] = {mesh.cells[0], mesh.cells[1], mesh.cells[2]};
+      break;
     case Kind::TetCylinder:
-      return {{"type", "tet_cylinder"}, {"base_centre", vec(mesh.baseCentre)},
-              {"radius", mesh.radius},  {"height", mesh.height},
-              {"rings", mesh.rings},    {"sectors", mesh.sectors},
-              {"layers", mesh.layers}};
-    case Kind::Obj: return {{"type", "obj"}, {"file", mesh.file}};
-    case Kind::TetGen: return {{"type", "tetgen"}, {"file", mesh.file}};
+      out["base_centre"] = vec(mesh.baseCentre);
+      out["radius"] = mesh.radius;
+      out["height"] = mesh.height;
+      out["rings"] = mesh.rings;
+      out["sectors"] = mesh.sectors;
+      out["layers"] = mesh.layers;
+      break;
+    case Kind::Obj:
+    case Kind::TetGen: out["file"] = mesh.file; break;
   }
-  return {};
+  return out;
 }
 
 Json paradigmJson(const DeformableDesc& d) {
   const ParadigmSettings& p = d.paradigm;
+  Json out{{"type", scene::nameOf(scene::kParadigmNames, p.type)}};
   switch (p.type) {
     case ParadigmType::MassSpring:
-      return {{"type", "mass_spring"},
-              {"spring_stiffness", d.springs.stiffness},
-              {"spring_damping", d.springs.damping},
-              {"implicit", d.springs.implicit}};
+      out["spring_stiffness"] = d.springs.stiffness;
+      out["spring_damping"] = d.springs.damping;
+      out["implicit"] = d.springs.implicit;
+      break;
+    case ParadigmType::PositionBased: out["iterations"] = p.iterations; [[fallthrough]];
     case ParadigmType::ShapeMatching:
-      return {{"type", "shape_matching"}, {"stiffness", p.stiffness}, {"damping", p.damping}};
-    case ParadigmType::PositionBased:
-      return {{"type", "position_based"}, {"stiffness", p.stiffness}, {"damping", p.damping}, {"iterations", p.iterations}};
+      out["stiffness"] = p.stiffness;
+      out["damping"] = p.damping;
+      break;
     case ParadigmType::CorotationalFem:
-      return {{"type", "corotational_fem"}, {"youngs_modulus", p.youngsModulus}, {"poisson_ratio", p.poissonRatio}};
+      out["youngs_modulus"] = p.youngsModulus;
+      out["poisson_ratio"] = p.poissonRatio;
+      break;
   }
-  return {};
+  return out;
 }
 
 // Unbounded forces are the default and have no JSON spelling: they are left out.
