@@ -309,6 +309,11 @@ struct World::Impl final : bullet::SolverHooks {
           return;
         }
     };
+    for (const GrabRow& row : rows.grabs)  // a grabbed body is awake
+      if (row.active && row.onRigid()) {
+        bullet.wake(row.body);
+        bullet.restartSleepTimer(row.body);
+      }
     for (const AnchorRow& row : rows.anchors) manage(row.body, row.node[0]);
     for (const ContactRow& row : rows.contacts)  // last step's
       if (row.body >= 0 && row.lambdaNormal > 0) manage(row.body, row.node[0]);
@@ -353,6 +358,7 @@ struct World::Impl final : bullet::SolverHooks {
     for (size_t i = 0; i < nodes.size(); ++i) nodes.position[i] += h * nodes.velocity[i];
     pushOutOfContacts();
     for (FixedPointRow& row : rows.fixedPoints) row.previousTarget = row.target;
+    for (GrabRow& row : rows.grabs) row.previousTarget = row.target;
   }
 
   // Split-impulse style: a contact found penetrating beyond the slop moves its deformable side

@@ -11,9 +11,9 @@ enum class Stage { Models, RigidPrediction, CollisionDetection, Rows, Solve, Int
 inline constexpr std::array<std::string_view, static_cast<size_t>(Stage::Count)> kStageNames{
     "models", "rigid prediction", "collision detection", "row setup", "interleaved solve", "integrate"};
 
-enum class RowType { FixedPoint, Anchor, Inextensibility, Bending, Contact, Friction, Count };
+enum class RowType { FixedPoint, Anchor, Inextensibility, Bending, Contact, Friction, Grab, Count };
 inline constexpr std::array<std::string_view, static_cast<size_t>(RowType::Count)> kRowTypeNames{
-    "fixed point", "anchor", "inextensibility", "bending", "contact", "friction"};
+    "fixed point", "anchor", "inextensibility", "bending", "contact", "friction", "grab"};
 
 struct StepReport {
   std::array<double, static_cast<size_t>(Stage::Count)> stageSeconds{};

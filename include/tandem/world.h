@@ -38,6 +38,9 @@ struct FixedPointId {
 struct JointId {
   int32_t index = -1;
 };
+struct GrabId {
+  int32_t index = -1;
+};
 
 inline constexpr double kUnbounded = std::numeric_limits<double>::infinity();
 
@@ -235,6 +238,37 @@ struct AnchorState {
   Vec3 worldPointOnDeformable = Vec3::Zero();
 };
 
+// ---- Grabs and ray casts: what a hand or a mouse needs ---------------------------------------
+
+// A point of a dynamic rigid body, or of a deformable (a node, or barycentric on up to four
+// nodes), pulled towards a target by a damped spring of natural frequency `frequency` up to
+// `maxForce`. The spring scales with the point's effective mass, so a cloth node and a heavy
+// box follow alike; it is a row of the interleaved solve, so what the point is tied to answers
+// in the same step (src/constraints/grab.h).
+struct GrabDesc {
+  std::optional<RigidBodyId> body;         // either a rigid body (dynamic) ...
+  std::optional<DeformableId> deformable;  // ... or a deformable
+  Vec3 point = Vec3::Zero();               // rigid: the grabbed point, world frame, now
+  std::array<int32_t, 4> nodes{-1, -1, -1, -1};        // deformable: local node indices
+  std::array<double, 4> weights{1.0, 0.0, 0.0, 0.0};   // summing to 1
+  int nodeCount = 1;
+  Vec3 target = Vec3::Zero();  // world frame; moved with setGrabTarget
+  double frequency = 5.0;      // Hz
+  double dampingRatio = 1.0;
+  double maxForce = kUnbounded;  // N
+};
+
+// The first surface a ray meets: a rigid body's shape, or a deformable's surface triangle.
+struct RayHit {
+  std::optional<RigidBodyId> rigid;
+  std::optional<DeformableId> deformable;
+  std::array<int32_t, 3> nodes{-1, -1, -1};  // deformable: the triangle's local node indices
+  std::array<double, 3> weights{};            //   and the hit's barycentric weights on them
+  Vec3 point = Vec3::Zero();
+  Vec3 normal = Vec3::UnitY();  // facing the ray's origin
+  double distance = 0.0;        // m from the origin along the (normalised) direction
+};
+
 class World {
  public:
   World();  // default settings; change them with setSettings
@@ -295,6 +329,20 @@ class World {
   Vec3 fixedPointImpulse(FixedPointId id) const;                    // N·s on the node, last step
   Result<AnchorId> addAnchor(const AnchorDesc& desc);
   AnchorState anchorState(AnchorId id) const;
+
+  // Grabs (one at a time or many; a removed grab's id may be reused by the next one added)
+  Result<GrabId> addGrab(const GrabDesc& desc);
+  Status setGrabTarget(GrabId id, const Vec3& target);
+  Status removeGrab(GrabId id);
+  Vec3 grabImpulse(GrabId id) const;  // N·s on the grabbed point in the last step
+  Vec3 grabPoint(GrabId id) const;    // where the grabbed point is now
+
+  // The nearest rigid shape or deformable surface along a ray (static bodies included), if any
+  // within maxDistance.
+  std::optional<RayHit> castRay(const Vec3& origin, const Vec3& direction, double maxDistance = 1.0e3) const;
+
+  // The shape a rigid body was made with, in its frame about its centre of mass.
+  const RigidShape& rigidShape(RigidBodyId body) const;
 
   // Contacts of deformable surfaces in the last step.
   std::vector<ContactReport> contacts() const;

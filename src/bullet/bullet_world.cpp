@@ -230,6 +230,7 @@ int BulletWorld::addRigidBody(const RigidBodyDesc& desc) {
     body->setLinearVelocity(toBt(desc.linearVelocity));
     body->setAngularVelocity(toBt(desc.angularVelocity));
   }
+  body->setUserIndex(static_cast<int>(m_impl->bodies.size()));  // for ray casts
   m_impl->world.addRigidBody(body.get());
 
   m_impl->shapes.push_back(std::move(shape));
@@ -377,6 +378,13 @@ double BulletWorld::contactImpulse(int bodyA, int bodyB) const {
 }
 
 int BulletWorld::manifoldCount() const { return m_impl->world.getDispatcher()->getNumManifolds(); }
+std::optional<BulletWorld::RayHit> BulletWorld::castRay(const Vec3& from, const Vec3& to) const {
+  btCollisionWorld::ClosestRayResultCallback result(toBt(from), toBt(to));
+  m_impl->world.rayTest(toBt(from), toBt(to), result);
+  if (!result.hasHit() || !result.m_collisionObject) return std::nullopt;
+  return RayHit{result.m_collisionObject->getUserIndex(), result.m_closestHitFraction,
+                fromBt(result.m_hitNormalWorld).normalized()};
+}
 int BulletWorld::jointCount() const { return m_impl->world.getNumConstraints(); }
 double BulletWorld::sleepingThreshold(int body) const {
   return m_impl->bodies[body]->getLinearSleepingThreshold();

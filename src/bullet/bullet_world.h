@@ -12,6 +12,7 @@
 #include "solver/solver_state.h"
 
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -71,6 +72,12 @@ class BulletWorld {
   double contactImpulse(int bodyA, int bodyB) const;
   int manifoldCount() const;
   int jointCount() const;
+  struct RayHit {
+    int body;
+    double fraction;  // of the way from `from` to `to`
+    Vec3 normal;
+  };
+  std::optional<RayHit> castRay(const Vec3& from, const Vec3& to) const;
   // The body's linear sleeping threshold (m/s): slower than this, Bullet lets it sleep.
   double sleepingThreshold(int body) const;
 

@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace tandem::geometry {
@@ -99,6 +100,30 @@ inline SegmentTriangle closestSegmentTriangle(const Vec3& p0, const Vec3& p1, co
     consider(s, w);
   }
   return best;
+}
+
+// Where the ray o + t d (t ≥ 0) crosses triangle abc, from either side (Möller and Trumbore
+// 1997): t and the barycentric weights, or nothing when it misses or runs parallel.
+struct RayTriangle {
+  double t;
+  std::array<double, 3> weights;
+};
+inline std::optional<RayTriangle> intersectRayTriangle(const Vec3& o, const Vec3& d, const Vec3& a, const Vec3& b,
+                                                       const Vec3& c) {
+  const Vec3 ab = b - a, ac = c - a;
+  const Vec3 p = d.cross(ac);
+  const double determinant = ab.dot(p);
+  if (std::abs(determinant) < 1e-14 * ab.norm() * ac.norm() * d.norm()) return std::nullopt;
+  const double inverse = 1.0 / determinant;
+  const Vec3 ao = o - a;
+  const double u = ao.dot(p) * inverse;
+  if (u < 0 || u > 1) return std::nullopt;
+  const Vec3 q = ao.cross(ab);
+  const double v = d.dot(q) * inverse;
+  if (v < 0 || u + v > 1) return std::nullopt;
+  const double t = ac.dot(q) * inverse;
+  if (t < 0) return std::nullopt;
+  return RayTriangle{t, {1 - u - v, u, v}};
 }
 
 // Distance from a point to a rigid shape's surface (negative inside), the outward unit normal

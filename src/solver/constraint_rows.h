@@ -8,6 +8,7 @@
 #include "constraints/bending.h"
 #include "constraints/contact.h"
 #include "constraints/fixed_point.h"
+#include "constraints/grab.h"
 #include "constraints/inextensibility.h"
 #include "solver/solver_state.h"
 
@@ -21,14 +22,17 @@ struct ConstraintRows {
   std::vector<InextensibilityRow> inextensibility;
   std::vector<BendingRow> bending;
   std::vector<ContactRow> contacts;  // found anew every step
+  std::vector<GrabRow> grabs;        // inactive ones are released slots
 
   // Scalar rows per type (a fixed point or an anchor is three; friction two per contact).
   std::array<int, static_cast<size_t>(RowType::Count)> countRows() const {
     int friction = 0;
     for (const ContactRow& row : contacts) friction += row.friction > 0 ? 2 : 0;
+    int grabRows = 0;
+    for (const GrabRow& row : grabs) grabRows += row.active ? 3 : 0;
     return {3 * static_cast<int>(fixedPoints.size()), 3 * static_cast<int>(anchors.size()),
             static_cast<int>(inextensibility.size()), static_cast<int>(bending.size()),
-            static_cast<int>(contacts.size()), friction};
+            static_cast<int>(contacts.size()), friction, grabRows};
   }
 
   void prepare(const NodeArrays& nodes, std::span<const RigidSolverState> rigid, const Vec3& gravity,
@@ -39,6 +43,8 @@ struct ConstraintRows {
     for (BendingRow& row : bending) prepareBending(row, nodes, timeStep, biasRate);
     for (ContactRow& row : contacts)
       prepareContact(row, nodes.velocity, nodes.inverseMass, rigid, gravity, timeStep, biasRate, contactSlop);
+    for (GrabRow& row : grabs)
+      if (row.active) prepareGrab(row, nodes, rigid, timeStep);
   }
 
   // Rows in a direct block are not warm started: the block is exact in one sweep, and its
@@ -52,6 +58,8 @@ struct ConstraintRows {
       if (!row.inDirectBlock) warmStartInextensibility(row, ctx);
     for (const BendingRow& row : bending) warmStartBending(row, ctx);
     for (const ContactRow& row : contacts) warmStartContact(row, ctx);  // a block's contacts come in at 0
+    for (const GrabRow& row : grabs)
+      if (row.active) warmStartGrab(row, ctx);
   }
 
   void clearImpulses() {
@@ -63,10 +71,13 @@ struct ConstraintRows {
       row.lambdaNormal = 0.0;
       row.lambdaTangent.setZero();
     }
+    for (GrabRow& row : grabs) row.lambda.setZero();
   }
 
   // One projected Gauss-Seidel sweep over every row not in a direct block.
   void sweep(SolverContext& ctx, FrictionModel friction, SweepStats& stats) {
+    for (GrabRow& row : grabs)
+      if (row.active) solveGrab(row, ctx, stats);
     for (FixedPointRow& row : fixedPoints)
       if (!row.inDirectBlock) solveFixedPoint(row, ctx, stats);
     for (InextensibilityRow& row : inextensibility)
