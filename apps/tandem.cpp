@@ -1,8 +1,14 @@
-// The `tandem` command: run, check and list scenes (scene files or built-in scenes).
+// The `tandem` command: run, check and list scenes (scene files or built-in scenes); view and
+// render them when built with rendering (apps/render_command.cpp, apps/viewer.cpp).
 #include <tandem/record.h>
 #include <tandem/scene_file.h>
 #include <tandem/scenes.h>
 #include <tandem/world.h>
+
+#include "scene_loading.h"
+#ifdef TANDEM_HAS_RENDER
+#include "render_command.h"
+#endif
 
 #include <CLI/CLI.hpp>
 
@@ -20,6 +26,10 @@ namespace {
 
 using tandem::BuiltinScene;
 using tandem::StepReport;
+using tandem::cli::buildInto;
+using tandem::cli::nodeCount;
+using tandem::cli::overrideIterations;
+using tandem::cli::SceneInfo;
 
 struct RunOptions {
   std::string scene;
@@ -58,63 +68,11 @@ void printReport(const StepReport& report, const std::vector<double>& stageTotal
   std::printf("\n");
 }
 
-int nodeCount(const tandem::World& world) {
-  int nodes = 0;
-  for (int d = 0; d < world.deformableCount(); ++d)
-    nodes += static_cast<int>(world.nodePositions(tandem::DeformableId{d}).size());
-  return nodes;
-}
-
-// What `run` needs to know about a scene besides the world it built.
-struct SceneInfo {
-  std::string name;
-  std::string description;
-  double timeStep = 0;
-  double duration = 0;
-};
-
-bool isSceneFile(const std::string& scene) {
-  return scene.ends_with(".json") || scene.find('/') != std::string::npos || std::filesystem::is_regular_file(scene);
-}
-
-// Builds a scene file or a built-in scene into `world`; prints the problem and returns nothing
-// when it cannot.
-std::optional<SceneInfo> buildInto(tandem::World& world, const std::string& scene) {
-  if (isSceneFile(scene)) {
-    tandem::Result<tandem::Scene> loaded = tandem::loadScene(scene);
-    tandem::Status built = loaded ? tandem::buildScene(*loaded, world) : loaded.status();
-    if (!built) {
-      std::fprintf(stderr, "tandem: %s\n", built.message().c_str());
-      return std::nullopt;
-    }
-    const std::string name = loaded->name.empty() ? std::filesystem::path(scene).stem().string() : loaded->name;
-    return SceneInfo{name, loaded->description, loaded->timeStep, loaded->duration};
-  }
-  const BuiltinScene* builtin = tandem::findBuiltinScene(scene);
-  if (!builtin) {
-    std::fprintf(stderr, "tandem: no scene file or built-in scene named '%s' (see `tandem list`)\n", scene.c_str());
-    return std::nullopt;
-  }
-  if (tandem::Status s = builtin->build(world); !s) {
-    std::fprintf(stderr, "tandem: scene '%s': %s\n", scene.c_str(), s.message().c_str());
-    return std::nullopt;
-  }
-  return SceneInfo{std::string(builtin->name), std::string(builtin->description), builtin->timeStep,
-                   builtin->defaultSeconds};
-}
-
 int run(const RunOptions& options) {
   tandem::World world;
   const std::optional<SceneInfo> scene = buildInto(world, options.scene);
   if (!scene) return 1;
-  if (options.iterations > 0) {
-    tandem::WorldSettings settings = world.settings();
-    settings.solver.iterations = options.iterations;
-    if (tandem::Status s = world.setSettings(settings); !s) {
-      std::fprintf(stderr, "tandem: %s\n", s.message().c_str());
-      return 2;
-    }
-  }
+  if (!overrideIterations(world, options.iterations)) return 2;
   const double h = options.timeStep > 0 ? options.timeStep : scene->timeStep;
   const double seconds = options.seconds > 0 ? options.seconds : scene->duration;
   const long steps = options.steps > 0 ? options.steps : std::max(1L, std::lround(seconds / h));
@@ -252,7 +210,14 @@ int main(int argc, char** argv) {
 
   CLI::App* listCommand = app.add_subcommand("list", "List the built-in scenes and the shipped scene files");
 
+#ifdef TANDEM_HAS_RENDER
+  const std::function<int()> runRenderCommand = tandem::cli::addRenderCommands(app);
+#endif
+
   CLI11_PARSE(app, argc, argv);
+#ifdef TANDEM_HAS_RENDER
+  if (const int status = runRenderCommand(); status >= 0) return status;
+#endif
   if (listCommand->parsed()) {
     list();
     return 0;

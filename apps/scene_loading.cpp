@@ -1,0 +1,58 @@
+#include "scene_loading.h"
+
+#include <tandem/scene_file.h>
+#include <tandem/scenes.h>
+
+#include <cstdio>
+#include <filesystem>
+
+namespace tandem::cli {
+namespace {
+bool isSceneFile(const std::string& scene) {
+  return scene.ends_with(".json") || scene.find('/') != std::string::npos || std::filesystem::is_regular_file(scene);
+}
+}  // namespace
+
+std::optional<SceneInfo> buildInto(World& world, const std::string& scene) {
+  if (isSceneFile(scene)) {
+    Result<Scene> loaded = loadScene(scene);
+    Status built = loaded ? buildScene(*loaded, world) : loaded.status();
+    if (!built) {
+      std::fprintf(stderr, "tandem: %s\n", built.message().c_str());
+      return std::nullopt;
+    }
+    const std::string name = loaded->name.empty() ? std::filesystem::path(scene).stem().string() : loaded->name;
+    return SceneInfo{name, loaded->description, loaded->timeStep, loaded->duration};
+  }
+  const BuiltinScene* builtin = findBuiltinScene(scene);
+  if (!builtin) {
+    std::fprintf(stderr, "tandem: no scene file or built-in scene named '%s' (see `tandem list`)\n", scene.c_str());
+    return std::nullopt;
+  }
+  if (Status s = builtin->build(world); !s) {
+    std::fprintf(stderr, "tandem: scene '%s': %s\n", scene.c_str(), s.message().c_str());
+    return std::nullopt;
+  }
+  return SceneInfo{std::string(builtin->name), std::string(builtin->description), builtin->timeStep,
+                   builtin->defaultSeconds};
+}
+
+bool overrideIterations(World& world, int iterations) {
+  if (iterations <= 0) return true;
+  WorldSettings settings = world.settings();
+  settings.solver.iterations = iterations;
+  if (Status s = world.setSettings(settings); !s) {
+    std::fprintf(stderr, "tandem: %s\n", s.message().c_str());
+    return false;
+  }
+  return true;
+}
+
+int nodeCount(const World& world) {
+  int nodes = 0;
+  for (int d = 0; d < world.deformableCount(); ++d)
+    nodes += static_cast<int>(world.nodePositions(DeformableId{d}).size());
+  return nodes;
+}
+
+}  // namespace tandem::cli

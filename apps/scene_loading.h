@@ -1,0 +1,29 @@
+// What every `tandem` command that runs a scene needs: build a scene file or a built-in scene
+// into a World, and apply the command line's overrides of its solver settings.
+#pragma once
+
+#include <tandem/world.h>
+
+#include <optional>
+#include <string>
+
+namespace tandem::cli {
+
+// What a command needs to know about a scene besides the world it built.
+struct SceneInfo {
+  std::string name;
+  std::string description;
+  double timeStep = 0;
+  double duration = 0;
+};
+
+// Builds a scene file or a built-in scene into `world`; prints the problem and returns nothing
+// when it cannot.
+std::optional<SceneInfo> buildInto(World& world, const std::string& scene);
+
+// Sets the solver's iterations when `iterations` > 0; prints the problem when refused.
+bool overrideIterations(World& world, int iterations);
+
+int nodeCount(const World& world);
+
+}  // namespace tandem::cli

@@ -1,0 +1,145 @@
+// The orbit camera of the viewer and of `tandem render`: where it looks from, its matrices,
+// and the pixel ↔ world maths that picking needs. No OpenGL here, so it is tested headless.
+//
+// Pixels: x to the right, y down, (0, 0) the top-left corner of the top-left pixel. View and
+// projection follow OpenGL: the camera looks down its −z, clip depth in [−1, 1].
+#pragma once
+
+#include <tandem/world.h>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace tandem::render {
+
+using Mat4 = Eigen::Matrix4d;
+
+struct Ray {
+  Vec3 origin;
+  Vec3 direction;  // unit
+};
+
+struct Camera {
+  Vec3 target{0.0, 0.5, 0.0};
+  double yaw = 0.6;     // rad about +y; 0 looks along −z
+  double pitch = 0.35;  // rad above the horizon
+  double distance = 4.0;
+  double fovY = 45.0 * std::numbers::pi / 180.0;
+
+  Vec3 eye() const {
+    return target + distance * Vec3(std::cos(pitch) * std::sin(yaw), std::sin(pitch), std::cos(pitch) * std::cos(yaw));
+  }
+
+  Mat4 view() const {
+    const Vec3 forward = (target - eye()).normalized();
+    const Vec3 right = forward.cross(Vec3::UnitY()).normalized();
+    const Vec3 up = right.cross(forward);
+    Mat4 m = Mat4::Identity();
+    m.block<1, 3>(0, 0) = right.transpose();
+    m.block<1, 3>(1, 0) = up.transpose();
+    m.block<1, 3>(2, 0) = -forward.transpose();
+    m.block<3, 1>(0, 3) = -m.block<3, 3>(0, 0) * eye();
+    return m;
+  }
+
+  double nearPlane() const { return std::max(1e-3, 0.01 * distance); }
+  double farPlane() const { return 200.0 * distance; }
+
+  Mat4 projection(double aspect) const {
+    const double f = 1.0 / std::tan(fovY / 2), n = nearPlane(), fa = farPlane();
+    Mat4 m = Mat4::Zero();
+    m(0, 0) = f / aspect;
+    m(1, 1) = f;
+    m(2, 2) = (fa + n) / (n - fa);
+    m(2, 3) = 2 * fa * n / (n - fa);
+    m(3, 2) = -1;
+    return m;
+  }
+
+  // The ray from the eye through pixel position (x, y) of a width × height image.
+  Ray ray(double x, double y, int width, int height) const {
+    const double aspect = static_cast<double>(width) / height;
+    const double t = std::tan(fovY / 2);
+    const double ndcX = 2.0 * x / width - 1.0, ndcY = 1.0 - 2.0 * y / height;
+    const Mat4 v = view();
+    const Vec3 right = v.block<1, 3>(0, 0).transpose(), up = v.block<1, 3>(1, 0).transpose();
+    const Vec3 forward = -v.block<1, 3>(2, 0).transpose();
+    return {eye(), (forward + ndcX * aspect * t * right + ndcY * t * up).normalized()};
+  }
+
+  // Where a world point lands in the image (pixels), and its distance in front of the eye.
+  Eigen::Vector3d project(const Vec3& point, int width, int height) const {
+    const Eigen::Vector4d clip = projection(static_cast<double>(width) / height) * view() * point.homogeneous();
+    const Eigen::Vector3d ndc = clip.head<3>() / clip.w();
+    return {(ndc.x() + 1) / 2 * width, (1 - ndc.y()) / 2 * height, clip.w()};
+  }
+
+  // Mouse motions, in pixels of a viewport `height` tall.
+  void orbit(double dx, double dy) {
+    yaw -= 0.01 * dx;
+    pitch = std::clamp(pitch + 0.01 * dy, -1.5, 1.5);
+  }
+  void pan(double dx, double dy, int height) {
+    const double metresPerPixel = 2 * distance * std::tan(fovY / 2) / height;
+    const Mat4 v = view();
+    target += metresPerPixel * (-dx * v.block<1, 3>(0, 0).transpose() + dy * v.block<1, 3>(1, 0).transpose());
+  }
+  void zoom(double wheelSteps) { distance = std::clamp(distance * std::pow(0.9, wheelSteps), 0.05, 500.0); }
+
+  // A camera at yaw and pitch that fits the box [low, high] in view.
+  static Camera framing(const Vec3& low, const Vec3& high, double yaw = 0.6, double pitch = 0.35) {
+    Camera camera;
+    camera.target = (low + high) / 2;
+    camera.yaw = yaw;
+    camera.pitch = pitch;
+    const double radius = std::max(0.5 * (high - low).norm(), 0.05);
+    camera.distance = 1.1 * radius / std::sin(camera.fovY / 2);
+    return camera;
+  }
+  // A camera at `eye` looking at `target`.
+  static Camera lookAt(const Vec3& eye, const Vec3& target) {
+    Camera camera;
+    const Vec3 offset = eye - target;
+    camera.target = target;
+    camera.distance = std::max(offset.norm(), 1e-3);
+    camera.pitch = std::asin(std::clamp(offset.y() / camera.distance, -1.0, 1.0));
+    camera.yaw = std::atan2(offset.x(), offset.z());
+    return camera;
+  }
+};
+
+// The box holding every deformable node and every rigid body but infinite planes (their
+// shapes' bounding spheres), for framing a scene.
+inline std::pair<Vec3, Vec3> sceneBounds(const World& world) {
+  Vec3 low = Vec3::Constant(INFINITY), high = Vec3::Constant(-INFINITY);
+  for (int d = 0; d < world.deformableCount(); ++d)
+    for (const Vec3& p : world.nodePositions(DeformableId{d})) {
+      low = low.cwiseMin(p);
+      high = high.cwiseMax(p);
+    }
+  for (int b = 0; b < world.rigidBodyCount(); ++b) {
+    const RigidShape& shape = world.rigidShape(RigidBodyId{b});
+    double reach = 0.0;
+    switch (shape.type) {
+      case ShapeType::Plane: continue;
+      case ShapeType::Box: reach = shape.halfExtents.norm(); break;
+      case ShapeType::Sphere: reach = shape.radius; break;
+      case ShapeType::Cylinder:
+      case ShapeType::Capsule: reach = shape.radius + shape.halfHeight; break;
+      case ShapeType::ConvexHull:
+      case ShapeType::TriangleMesh:
+        for (const Vec3& p : shape.points) reach = std::max(reach, p.norm());
+        break;
+    }
+    const Vec3 centre = world.rigidPosition(RigidBodyId{b});
+    low = low.cwiseMin(centre - Vec3::Constant(reach));
+    high = high.cwiseMax(centre + Vec3::Constant(reach));
+  }
+  if (!low.allFinite()) return {Vec3(-1, 0, -1), Vec3(1, 1, 1)};  // nothing but planes
+  return {low, high};
+}
+
+}  // namespace tandem::render

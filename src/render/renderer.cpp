@@ -1,0 +1,408 @@
+// The renderer: one lit-mesh program for shapes, surfaces and ground, one line program for
+// grid-free overlays (wireframe, contacts, the grab), buffers refreshed each frame for what
+// moves (deformables) and made once for what does not (rigid shapes, in their own frames).
+#include "render/renderer.h"
+
+#include "render/gl.h"
+
+#include <tandem/shape_surface.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace tandem::render {
+namespace {
+
+constexpr const char* kMeshVertex = R"(#version 330 core
+layout(location = 0) in vec3 position;
+layout(location = 1) in vec3 normal;
+uniform mat4 model;
+uniform mat4 viewProjection;
+uniform mat3 normalMatrix;
+out vec3 worldPosition;
+out vec3 worldNormal;
+void main() {
+  vec4 world = model * vec4(position, 1.0);
+  worldPosition = world.xyz;
+  worldNormal = normalMatrix * normal;
+  gl_Position = viewProjection * world;
+}
+)";
+
+// Two-sided Blinn-Phong with a key and a fill light and a sky/ground ambient; a ground plane
+// gets anti-aliased grid lines from its world position (spacing 0: none).
+constexpr const char* kMeshFragment = R"(#version 330 core
+in vec3 worldPosition;
+in vec3 worldNormal;
+uniform vec3 colour;
+uniform vec3 eye;
+uniform float gridSpacing;
+uniform vec3 gridU;
+uniform vec3 gridV;
+out vec4 fragmentColour;
+void main() {
+  vec3 n = normalize(worldNormal);
+  vec3 toEye = normalize(eye - worldPosition);
+  if (dot(n, toEye) < 0.0) n = -n;
+  vec3 key = normalize(vec3(0.4, 1.0, 0.35));
+  vec3 fill = normalize(vec3(-0.6, 0.35, -0.5));
+  vec3 base = colour;
+  if (gridSpacing > 0.0) {
+    vec2 g = vec2(dot(worldPosition, gridU), dot(worldPosition, gridV)) / gridSpacing;
+    vec2 d = abs(fract(g - 0.5) - 0.5) / max(fwidth(g), vec2(1e-6));
+    float line = 1.0 - min(min(d.x, d.y), 1.0);
+    float fade = clamp(1.0 - length(worldPosition - eye) / (60.0 * gridSpacing), 0.0, 1.0);
+    base = mix(base, base * 0.55, line * fade);
+  }
+  float diffuse = 0.75 * max(dot(n, key), 0.0) + 0.3 * max(dot(n, fill), 0.0);
+  float ambient = 0.22 + 0.12 * n.y;
+  float specular = 0.2 * pow(max(dot(n, normalize(key + toEye)), 0.0), 48.0);
+  fragmentColour = vec4(base * (ambient + diffuse) + vec3(specular), 1.0);
+}
+)";
+
+constexpr const char* kLineVertex = R"(#version 330 core
+layout(location = 0) in vec3 position;
+layout(location = 1) in vec3 colour;
+uniform mat4 viewProjection;
+out vec3 lineColour;
+void main() {
+  lineColour = colour;
+  gl_Position = viewProjection * vec4(position, 1.0);
+}
+)";
+
+constexpr const char* kLineFragment = R"(#version 330 core
+in vec3 lineColour;
+out vec4 fragmentColour;
+void main() { fragmentColour = vec4(lineColour, 1.0); }
+)";
+
+Result<GLuint> compile(GLenum type, const char* source) {
+  const GLuint shader = glCreateShader(type);
+  glShaderSource(shader, 1, &source, nullptr);
+  glCompileShader(shader);
+  GLint ok = 0;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (ok) return shader;
+  char log[2048] = {};
+  glGetShaderInfoLog(shader, sizeof log, nullptr, log);
+  glDeleteShader(shader);
+  return Error{std::string("renderer: shader does not compile: ") + log};
+}
+
+Result<GLuint> link(const char* vertexSource, const char* fragmentSource) {
+  Result<GLuint> vertex = compile(GL_VERTEX_SHADER, vertexSource);
+  if (!vertex) return vertex;
+  Result<GLuint> fragment = compile(GL_FRAGMENT_SHADER, fragmentSource);
+  if (!fragment) {
+    glDeleteShader(*vertex);
+    return fragment;
+  }
+  const GLuint program = glCreateProgram();
+  glAttachShader(program, *vertex);
+  glAttachShader(program, *fragment);
+  glLinkProgram(program);
+  glDeleteShader(*vertex);
+  glDeleteShader(*fragment);
+  GLint ok = 0;
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (ok) return program;
+  char log[2048] = {};
+  glGetProgramInfoLog(program, sizeof log, nullptr, log);
+  glDeleteProgram(program);
+  return Error{std::string("renderer: shaders do not link: ") + log};
+}
+
+// Interleaved position and normal (or colour), as floats.
+struct Vertex {
+  float a[3];
+  float b[3];
+};
+Vertex vertex(const Vec3& p, const Vec3& n) {
+  return {{float(p.x()), float(p.y()), float(p.z())}, {float(n.x()), float(n.y()), float(n.z())}};
+}
+Vertex vertex(const Vec3& p, const std::array<float, 3>& c) {
+  return {{float(p.x()), float(p.y()), float(p.z())}, {c[0], c[1], c[2]}};
+}
+
+// A vertex array with one interleaved buffer and an index buffer.
+struct GpuMesh {
+  GLuint array = 0, vertices = 0, indices = 0;
+  GLsizei indexCount = 0;
+
+  void create() {
+    glGenVertexArrays(1, &array);
+    glGenBuffers(1, &vertices);
+    glGenBuffers(1, &indices);
+    glBindVertexArray(array);
+    glBindBuffer(GL_ARRAY_BUFFER, vertices);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, indices);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(Vertex), nullptr);
+    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(Vertex), reinterpret_cast<void*>(3 * sizeof(float)));
+    glEnableVertexAttribArray(0);
+    glEnableVertexAttribArray(1);
+    glBindVertexArray(0);
+  }
+  void upload(const std::vector<Vertex>& data, const std::vector<uint32_t>& index, GLenum usage) {
+    if (!array) create();
+    glBindBuffer(GL_ARRAY_BUFFER, vertices);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(data.size() * sizeof(Vertex)), data.data(), usage);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, indices);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(index.size() * sizeof(uint32_t)), index.data(),
+                 usage);
+    indexCount = static_cast<GLsizei>(index.size());
+  }
+  void draw(GLenum mode) const {
+    if (!indexCount) return;
+    glBindVertexArray(array);
+    glDrawElements(mode, indexCount, GL_UNSIGNED_INT, nullptr);
+  }
+  void destroy() {
+    if (!array) return;
+    glDeleteBuffers(1, &vertices);
+    glDeleteBuffers(1, &indices);
+    glDeleteVertexArrays(1, &array);
+    array = 0;
+  }
+};
+
+Eigen::Matrix4f toFloat(const Mat4& m) { return m.cast<float>(); }
+
+// A tube around each edge of a mesh without faces (a rope), as a surface to shade.
+void addTube(const Vec3& a, const Vec3& b, double radius, std::vector<Vertex>& data, std::vector<uint32_t>& index) {
+  constexpr int kSides = 8;
+  const Vec3 axis = (b - a).normalized();
+  const Vec3 side = (std::abs(axis.y()) < 0.9 ? Vec3::UnitY() : Vec3::UnitX()).cross(axis).normalized();
+  const Vec3 other = axis.cross(side);
+  const auto first = static_cast<uint32_t>(data.size());
+  for (int s = 0; s < kSides; ++s) {
+    const double angle = 2.0 * std::numbers::pi * s / kSides;
+    const Vec3 n = std::cos(angle) * side + std::sin(angle) * other;
+    data.push_back(vertex(a + radius * n, n));
+    data.push_back(vertex(b + radius * n, n));
+  }
+  for (uint32_t s = 0; s < kSides; ++s) {
+    const uint32_t next = (s + 1) % kSides;
+    index.insert(index.end(), {first + 2 * s, first + 2 * next, first + 2 * next + 1, first + 2 * s,
+                               first + 2 * next + 1, first + 2 * s + 1});
+  }
+}
+
+std::array<float, 3> brighter(std::array<float, 3> c) {
+  for (float& x : c) x = std::min(1.0f, 0.35f + 0.8f * x);
+  return c;
+}
+
+}  // namespace
+
+std::array<float, 3> deformableColour(int index) {
+  static constexpr std::array<std::array<float, 3>, 4> kWarm{
+      {{0.86f, 0.24f, 0.14f}, {0.85f, 0.55f, 0.10f}, {0.72f, 0.20f, 0.55f}, {0.40f, 0.70f, 0.20f}}};
+  return kWarm[static_cast<size_t>(index) % kWarm.size()];
+}
+
+std::array<float, 3> rigidColour(int index, bool isStatic) {
+  static constexpr std::array<std::array<float, 3>, 4> kCool{
+      {{0.25f, 0.45f, 0.80f}, {0.20f, 0.62f, 0.62f}, {0.45f, 0.40f, 0.78f}, {0.35f, 0.55f, 0.40f}}};
+  if (isStatic) return {0.62f, 0.63f, 0.66f};
+  return kCool[static_cast<size_t>(index) % kCool.size()];
+}
+
+struct Renderer::Impl {
+  GLuint meshProgram = 0, lineProgram = 0;
+  std::vector<GpuMesh> rigidMeshes;       // by rigid body, in the body's frame
+  std::vector<GpuMesh> deformableMeshes;  // by deformable, refreshed every frame
+  GpuMesh ground;                         // a unit square, scaled onto each plane
+  GpuMesh lines;
+  std::vector<Vertex> lineData;
+  std::vector<uint32_t> lineIndex;
+
+  ~Impl() {
+    for (GpuMesh& mesh : rigidMeshes) mesh.destroy();
+    for (GpuMesh& mesh : deformableMeshes) mesh.destroy();
+    ground.destroy();
+    lines.destroy();
+    if (meshProgram) glDeleteProgram(meshProgram);
+    if (lineProgram) glDeleteProgram(lineProgram);
+  }
+
+  void setMatrix(GLuint program, const char* name, const Eigen::Matrix4f& m) {
+    glUniformMatrix4fv(glGetUniformLocation(program, name), 1, GL_FALSE, m.data());
+  }
+  void setVector(const char* name, const Vec3& v) {
+    glUniform3f(glGetUniformLocation(meshProgram, name), float(v.x()), float(v.y()), float(v.z()));
+  }
+  void setColour(const std::array<float, 3>& c) {
+    glUniform3f(glGetUniformLocation(meshProgram, "colour"), c[0], c[1], c[2]);
+  }
+  void setModel(const Eigen::Matrix4f& model) {
+    setMatrix(meshProgram, "model", model);
+    const Eigen::Matrix3f normal = model.block<3, 3>(0, 0).inverse().transpose();
+    glUniformMatrix3fv(glGetUniformLocation(meshProgram, "normalMatrix"), 1, GL_FALSE, normal.data());
+  }
+
+  void line(const Vec3& a, const Vec3& b, const std::array<float, 3>& colour) {
+    const auto first = static_cast<uint32_t>(lineData.size());
+    lineData.push_back(vertex(a, colour));
+    lineData.push_back(vertex(b, colour));
+    lineIndex.insert(lineIndex.end(), {first, first + 1});
+  }
+
+  void refreshRigidMeshes(const World& world) {
+    while (static_cast<int>(rigidMeshes.size()) < world.rigidBodyCount()) {
+      const RigidShape& shape = world.rigidShape(RigidBodyId{static_cast<int32_t>(rigidMeshes.size())});
+      const ShapeSurface surface = shapeSurface(shape, 40);
+      std::vector<Vertex> data;
+      std::vector<uint32_t> index;
+      for (size_t i = 0; i < surface.positions.size(); ++i) data.push_back(vertex(surface.positions[i], surface.normals[i]));
+      for (const auto& t : surface.triangles) index.insert(index.end(), {uint32_t(t[0]), uint32_t(t[1]), uint32_t(t[2])});
+      rigidMeshes.emplace_back().upload(data, index, GL_STATIC_DRAW);
+    }
+  }
+
+  // Smooth normals: each node's is the area-weighted sum of its faces' normals.
+  void refreshDeformableMesh(const World& world, int d) {
+    const DeformableId id{d};
+    const std::span<const Vec3> x = world.nodePositions(id);
+    const DeformableMesh& mesh = world.restMesh(id);
+    std::vector<Vertex> data;
+    std::vector<uint32_t> index;
+    if (mesh.triangles.empty()) {
+      for (const auto& e : mesh.edges) addTube(x[e[0]], x[e[1]], 0.01, data, index);
+    } else {
+      std::vector<Vec3> normals(x.size(), Vec3::Zero());
+      for (const auto& t : mesh.triangles) {
+        const Vec3 n = (x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]);
+        for (int k = 0; k < 3; ++k) normals[t[k]] += n;
+        index.insert(index.end(), {uint32_t(t[0]), uint32_t(t[1]), uint32_t(t[2])});
+      }
+      data.reserve(x.size());
+      for (size_t i = 0; i < x.size(); ++i) {
+        const double length = normals[i].norm();
+        data.push_back(vertex(x[i], length > 0 ? Vec3(normals[i] / length) : Vec3::UnitY()));
+      }
+    }
+    if (static_cast<int>(deformableMeshes.size()) <= d) deformableMeshes.resize(d + 1);
+    deformableMeshes[d].upload(data, index, GL_STREAM_DRAW);
+  }
+
+  // An infinite plane as a square of 40 m (or 80 camera distances) around the point under the
+  // camera's target, with grid lines every 0.25 m.
+  void drawPlane(const RigidShape& plane, const Camera& camera) {
+    const Vec3 n = plane.planeNormal.normalized();
+    const Vec3 u = (std::abs(n.y()) < 0.9 ? Vec3::UnitY() : Vec3::UnitX()).cross(n).normalized();
+    const Vec3 v = n.cross(u);
+    const Vec3 centre = camera.target - (n.dot(camera.target) - plane.planeOffset) * n;
+    const double half = std::max(20.0, 40.0 * camera.distance);
+    Eigen::Matrix4f model = Eigen::Matrix4f::Identity();
+    model.block<3, 1>(0, 0) = (half * u).cast<float>();
+    model.block<3, 1>(0, 1) = (half * n).cast<float>();
+    model.block<3, 1>(0, 2) = (half * v).cast<float>();
+    model.block<3, 1>(0, 3) = centre.cast<float>();
+    setModel(model);
+    setColour({0.55f, 0.56f, 0.58f});
+    glUniform1f(glGetUniformLocation(meshProgram, "gridSpacing"), 0.25f);
+    setVector("gridU", u);
+    setVector("gridV", v);
+    ground.draw(GL_TRIANGLES);
+    glUniform1f(glGetUniformLocation(meshProgram, "gridSpacing"), 0.0f);
+  }
+};
+
+Renderer::Renderer() : m_impl(std::make_unique<Impl>()) {}
+Renderer::~Renderer() = default;
+
+Result<std::unique_ptr<Renderer>> Renderer::create() {
+  std::unique_ptr<Renderer> renderer(new Renderer());
+  Impl& r = *renderer->m_impl;
+  Result<GLuint> mesh = link(kMeshVertex, kMeshFragment);
+  if (!mesh) return Error{mesh.message()};
+  r.meshProgram = *mesh;
+  Result<GLuint> lines = link(kLineVertex, kLineFragment);
+  if (!lines) return Error{lines.message()};
+  r.lineProgram = *lines;
+  const Vec3 up = Vec3::UnitY();  // the unit ground square, in the plane's (u, n, v) frame
+  r.ground.upload({vertex(Vec3(-1, 0, -1), up), vertex(Vec3(1, 0, -1), up), vertex(Vec3(1, 0, 1), up),
+                   vertex(Vec3(-1, 0, 1), up)},
+                  {0, 2, 1, 0, 3, 2}, GL_STATIC_DRAW);
+  return renderer;
+}
+
+void Renderer::draw(const World& world, const Camera& camera, int width, int height, const RenderOptions& options) {
+  Impl& r = *m_impl;
+  glViewport(0, 0, width, height);
+  glClearColor(0.19f, 0.21f, 0.25f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);  // cloth has two sides
+  const Eigen::Matrix4f viewProjection = toFloat(camera.projection(double(width) / height) * camera.view());
+
+  glUseProgram(r.meshProgram);
+  r.setMatrix(r.meshProgram, "viewProjection", viewProjection);
+  r.setVector("eye", camera.eye());
+  glUniform1f(glGetUniformLocation(r.meshProgram, "gridSpacing"), 0.0f);
+  r.refreshRigidMeshes(world);
+  auto drawBodies = [&](bool wire) {
+    for (int b = 0; b < world.rigidBodyCount(); ++b) {
+      const RigidBodyId id{b};
+      const RigidShape& shape = world.rigidShape(id);
+      if (shape.type == ShapeType::Plane) {
+        if (!wire) r.drawPlane(shape, camera);
+        continue;
+      }
+      Eigen::Matrix4f model = Eigen::Matrix4f::Identity();
+      model.block<3, 3>(0, 0) = world.rigidOrientation(id).normalized().toRotationMatrix().cast<float>();
+      model.block<3, 1>(0, 3) = world.rigidPosition(id).cast<float>();
+      r.setModel(model);
+      std::array<float, 3> colour = rigidColour(b, world.rigidMass(id) == 0.0);
+      if (options.highlightRigid == id) colour = brighter(colour);
+      r.setColour(wire ? std::array<float, 3>{0.05f, 0.05f, 0.05f} : colour);
+      r.rigidMeshes[b].draw(GL_TRIANGLES);
+    }
+    r.setModel(Eigen::Matrix4f::Identity());
+    for (int d = 0; d < world.deformableCount(); ++d) {
+      if (!wire) r.refreshDeformableMesh(world, d);
+      std::array<float, 3> colour = deformableColour(d);
+      if (options.highlightDeformable == DeformableId{d}) colour = brighter(colour);
+      r.setColour(wire ? std::array<float, 3>{0.05f, 0.05f, 0.05f} : colour);
+      r.deformableMeshes[d].draw(GL_TRIANGLES);
+    }
+  };
+  drawBodies(false);
+  if (options.wireframe) {  // the edges over the shading, pulled a little towards the eye
+    glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+    glEnable(GL_POLYGON_OFFSET_LINE);
+    glPolygonOffset(-1.0f, -1.0f);
+    drawBodies(true);
+    glDisable(GL_POLYGON_OFFSET_LINE);
+    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+  }
+
+  r.lineData.clear();
+  r.lineIndex.clear();
+  if (options.contacts) {
+    const double h = world.stepCount() > 0 ? world.time() / double(world.stepCount()) : 1.0;
+    for (const ContactReport& contact : world.contacts()) {
+      const double size = 0.01;
+      for (int axis = 0; axis < 3; ++axis)
+        r.line(contact.point - size * Vec3::Unit(axis), contact.point + size * Vec3::Unit(axis), {1.0f, 0.9f, 0.2f});
+      const Vec3 force = (contact.normalImpulse * contact.normal + contact.frictionImpulse) / h;
+      if (force.norm() > 1e-9) r.line(contact.point, contact.point + options.forceScale * force, {0.3f, 1.0f, 0.4f});
+    }
+  }
+  if (options.grabLine) r.line(options.grabLine->first, options.grabLine->second, {1.0f, 1.0f, 1.0f});
+  if (!r.lineIndex.empty()) {
+    glUseProgram(r.lineProgram);
+    r.setMatrix(r.lineProgram, "viewProjection", viewProjection);
+    r.lines.upload(r.lineData, r.lineIndex, GL_STREAM_DRAW);
+    glDisable(GL_DEPTH_TEST);  // overlays show through
+    r.lines.draw(GL_LINES);
+    glEnable(GL_DEPTH_TEST);
+  }
+  glBindVertexArray(0);
+  glUseProgram(0);
+}
+
+}  // namespace tandem::render

@@ -1,0 +1,249 @@
+// Rendering and the viewer: the camera and picking maths without a display; `tandem render`
+// offscreen (EGL) checked against the camera's own projection of the cloth; `tandem view`
+// under Xvfb, its screenshot and a scripted mouse drag (xdotool).
+#include "render/camera.h"
+
+#include <tandem/scene_file.h>
+#include <tandem/world.h>
+
+#include <gtest/gtest.h>
+#include <stb_image.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
+#include <regex>
+#include <string>
+
+namespace tandem {
+namespace {
+
+using render::Camera;
+
+constexpr int kWidth = 320, kHeight = 240;
+
+TEST(Camera, RayAndProjectionAreInverses) {
+  const Camera camera = Camera::lookAt({1.0, 2.0, 3.0}, {0.2, 0.5, -0.1});
+  EXPECT_LT((camera.eye() - Vec3(1.0, 2.0, 3.0)).norm(), 1e-12);
+  for (const auto& [x, y] : {std::pair{10.5, 20.25}, {160.0, 120.0}, {319.0, 1.0}}) {
+    const render::Ray ray = camera.ray(x, y, kWidth, kHeight);
+    EXPECT_NEAR(ray.direction.norm(), 1.0, 1e-12);
+    const Eigen::Vector3d pixel = camera.project(ray.origin + 2.7 * ray.direction, kWidth, kHeight);
+    EXPECT_NEAR(pixel.x(), x, 1e-9);
+    EXPECT_NEAR(pixel.y(), y, 1e-9);
+    EXPECT_GT(pixel.z(), 0.0);  // in front
+  }
+  const render::Ray centre = camera.ray(kWidth / 2.0, kHeight / 2.0, kWidth, kHeight);
+  EXPECT_LT((centre.direction - (camera.target - camera.eye()).normalized()).norm(), 1e-12);
+  const Eigen::Vector3d up = camera.project(camera.target + Vec3(0, 0.1, 0), kWidth, kHeight);
+  EXPECT_LT(up.y(), kHeight / 2.0);  // y grows downwards
+}
+
+TEST(Camera, FramingKeepsTheWholeBoxInView) {
+  const Vec3 low(-0.3, 0.0, -2.0), high(0.5, 1.4, 0.7);
+  const Camera camera = Camera::framing(low, high);
+  for (int corner = 0; corner < 8; ++corner) {
+    const Vec3 p((corner & 1) ? high.x() : low.x(), (corner & 2) ? high.y() : low.y(), (corner & 4) ? high.z() : low.z());
+    const Eigen::Vector3d pixel = camera.project(p, kWidth, kHeight);
+    EXPECT_GT(pixel.x(), 0);
+    EXPECT_LT(pixel.x(), kWidth);
+    EXPECT_GT(pixel.y(), 0);
+    EXPECT_LT(pixel.y(), kHeight);
+  }
+}
+
+// The viewer's picking: the ray through a pixel finds the body drawn there, and on a cloth the
+// face and barycentric point that project back onto the pixel.
+TEST(Picking, PixelRaysFindTheBodyAndTheClothPointUnderThem) {
+  World world;
+  RigidBodyDesc box;
+  box.name = "box";
+  box.shape = RigidShape::box({0.2, 0.2, 0.2});
+  box.position = {-0.6, 0.2, 0};
+  const RigidBodyId boxId = *world.addRigidBody(box);
+  DeformableDesc cloth;
+  cloth.name = "cloth";
+  cloth.mesh = *makeClothGrid({0.1, 0.3, -0.5}, {1, 0, 0}, {0, 0, 1}, 9, 9, 0.1);
+  const DeformableId clothId = *world.addDeformable(cloth);
+  const Camera camera = Camera::lookAt({0, 2, 3}, {0, 0.2, 0});
+
+  const Eigen::Vector3d boxPixel = camera.project(box.position, kWidth, kHeight);
+  const render::Ray toBox = camera.ray(boxPixel.x(), boxPixel.y(), kWidth, kHeight);
+  const auto boxHit = world.castRay(toBox.origin, toBox.direction);
+  ASSERT_TRUE(boxHit && boxHit->rigid);
+  EXPECT_EQ(boxHit->rigid->index, boxId.index);
+  EXPECT_LT((boxHit->point - box.position).cwiseAbs().maxCoeff(), 0.2 + 1e-3);  // on the box
+
+  const Vec3 onCloth(0.537, 0.3, 0.118);
+  const Eigen::Vector3d clothPixel = camera.project(onCloth, kWidth, kHeight);
+  const render::Ray toCloth = camera.ray(clothPixel.x(), clothPixel.y(), kWidth, kHeight);
+  const auto clothHit = world.castRay(toCloth.origin, toCloth.direction);
+  ASSERT_TRUE(clothHit && clothHit->deformable);
+  EXPECT_EQ(clothHit->deformable->index, clothId.index);
+  EXPECT_LT((clothHit->point - onCloth).norm(), 1e-9);
+  const std::span<const Vec3> x = world.nodePositions(clothId);
+  Vec3 barycentric = Vec3::Zero();
+  for (int k = 0; k < 3; ++k) barycentric += clothHit->weights[k] * x[clothHit->nodes[k]];
+  EXPECT_LT((barycentric - onCloth).norm(), 1e-9);
+
+  const render::Ray sky = camera.ray(kWidth / 2.0, 1.0, kWidth, kHeight);
+  EXPECT_FALSE(world.castRay(sky.origin, sky.direction).has_value());
+}
+
+// ---- With the command ---------------------------------------------------------------------
+
+std::string source(const std::string& path) { return std::string(TANDEM_SOURCE_DIR) + "/" + path; }
+
+// Runs a shell command; returns its exit status and fills `output` with its standard output.
+int runCommand(const std::string& command, std::string& output) {
+  output.clear();
+  std::FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  if (!pipe) return -1;
+  char buffer[4096];
+  while (size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) output.append(buffer, n);
+  return pclose(pipe);
+}
+
+struct Image {
+  int width = 0, height = 0;
+  std::unique_ptr<unsigned char, void (*)(void*)> pixels{nullptr, stbi_image_free};
+  const unsigned char* at(int x, int y) const { return pixels.get() + 3 * (y * width + x); }
+};
+Image loadPng(const std::string& path) {
+  Image image;
+  int channels = 0;
+  image.pixels.reset(stbi_load(path.c_str(), &image.width, &image.height, &channels, 3));
+  return image;
+}
+
+// Deformables are drawn in warm colours (the first a strong red), everything else in greys and
+// cool colours: a clearly red pixel is cloth.
+bool isClothRed(const unsigned char* p) { return p[0] > 40 && p[0] > 1.8 * p[1] && p[0] > 1.8 * p[2]; }
+
+struct Coverage {
+  double cloth = 0.0;       // share of the image
+  double background = 0.0;  // share in the clear colour
+};
+Coverage measure(const Image& image) {
+  Coverage coverage;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      const unsigned char* p = image.at(x, y);
+      coverage.cloth += isClothRed(p);
+      coverage.background += std::abs(p[0] - 48) + std::abs(p[1] - 54) + std::abs(p[2] - 64) <= 3;
+    }
+  const double pixels = double(image.width) * image.height;
+  return {coverage.cloth / pixels, coverage.background / pixels};
+}
+
+// At t = 0 the cloth lies flat above the sphere, seen from above: nothing hides it and it
+// does not overlap itself, so its share of the picture is the sum of its triangles' projected
+// areas through the same framing camera, less the anti-aliased rim.
+TEST(RenderCommand, ClothSpherePngShowsTheClothWhereTheCameraPutsIt) {
+  const std::string png = std::filesystem::temp_directory_path() / "tandem_test_cloth_sphere.png";
+  std::filesystem::remove(png);
+  std::string output;
+  const int status = runCommand(std::string(TANDEM_CLI) + " render " + source("scenes/cloth_sphere.json") +
+                                    " --frames 1 --width 320 --height 240 --out " + png,
+                                output);
+  ASSERT_EQ(status, 0) << output;
+  const Image image = loadPng(png);
+  ASSERT_TRUE(image.pixels) << "no PNG at " << png;
+  EXPECT_EQ(image.width, 320);
+  EXPECT_EQ(image.height, 240);
+
+  Result<Scene> scene = loadScene(source("scenes/cloth_sphere.json"));
+  ASSERT_TRUE(scene.ok());
+  World world;
+  ASSERT_TRUE(buildScene(*scene, world).ok());
+  const auto [low, high] = render::sceneBounds(world);
+  const Camera camera = Camera::framing(low, high);
+  const DeformableId cloth{0};
+  double projectedArea = 0.0;
+  for (const auto& t : world.restMesh(cloth).triangles) {
+    const std::span<const Vec3> x = world.nodePositions(cloth);
+    const Eigen::Vector3d a = camera.project(x[t[0]], 320, 240), b = camera.project(x[t[1]], 320, 240),
+                          c = camera.project(x[t[2]], 320, 240);
+    projectedArea += 0.5 * std::abs((b - a).head<2>().x() * (c - a).head<2>().y() - (b - a).head<2>().y() * (c - a).head<2>().x());
+  }
+  const double expected = projectedArea / (320.0 * 240.0);
+  const Coverage coverage = measure(image);
+  EXPECT_GT(expected, 0.05);  // the framing shows the cloth large
+  EXPECT_NEAR(coverage.cloth, expected, 0.05 * expected) << "expected share " << expected;
+  std::printf("cloth covers %.4f of the picture; its projected triangles %.4f\n", coverage.cloth, expected);
+  EXPECT_LT(coverage.background, 0.5);  // the floor and the sphere are drawn too
+  EXPECT_GT(coverage.background, 0.0);  // and the sky above the horizon is the clear colour
+}
+
+TEST(RenderCommand, Mp4AndFolderOutputsAndBadRequests) {
+  const std::filesystem::path folder = std::filesystem::temp_directory_path() / "tandem_test_frames";
+  std::filesystem::remove_all(folder);
+  std::string output;
+  ASSERT_EQ(runCommand(std::string(TANDEM_CLI) + " render hanging_rope --frames 3 --width 64 --height 48 --out " +
+                           folder.string() + "/",
+                       output),
+            0)
+      << output;
+  for (const char* name : {"frame_00000.png", "frame_00001.png", "frame_00002.png"})
+    EXPECT_TRUE(std::filesystem::exists(folder / name)) << name;
+  const std::filesystem::path video = folder / "rope.mp4";
+  ASSERT_EQ(runCommand(std::string(TANDEM_CLI) + " render hanging_rope --frames 10 --width 65 --height 49 --out " +
+                           video.string(),
+                       output),
+            0)
+      << output;
+  EXPECT_GT(std::filesystem::file_size(video), 1000u);  // ten H.264 frames, the odd size padded
+  EXPECT_NE(runCommand(std::string(TANDEM_CLI) + " render hanging_rope --frames 2 --out one.png", output), 0);
+  EXPECT_NE(output.find("holds one frame"), std::string::npos) << output;
+  EXPECT_NE(runCommand(std::string(TANDEM_CLI) + " render hanging_rope --out /no/such/folder/x.png", output), 0);
+  EXPECT_NE(output.find("cannot write"), std::string::npos) << output;
+}
+
+// ---- The viewer, under Xvfb ---------------------------------------------------------------
+
+TEST(Viewer, RunsSixtyFramesAndTakesAScreenshotThatShowsTheScene) {
+  const std::string png = std::filesystem::temp_directory_path() / "tandem_test_viewer.png";
+  std::filesystem::remove(png);
+  std::string output;
+  const int status = runCommand("xvfb-run -a -s '-screen 0 1280x720x24' " + std::string(TANDEM_CLI) + " view " +
+                                    source("scenes/cloth_sphere.json") +
+                                    " --frames 60 --width 640 --height 480 --screenshot " + png,
+                                output);
+  ASSERT_EQ(status, 0) << output;
+  EXPECT_NE(output.find("for 60 frames"), std::string::npos) << output;
+  const Image image = loadPng(png);
+  ASSERT_TRUE(image.pixels);
+  EXPECT_EQ(image.width, 640);
+  EXPECT_EQ(image.height, 480);
+  const Coverage coverage = measure(image);
+  EXPECT_GT(coverage.cloth, 0.02);  // the cloth is there (and the panel, floor and sky besides)
+  EXPECT_LT(coverage.background, 0.5);
+}
+
+Vec3 finalBoxPosition(const std::string& output) {
+  const std::regex line(R"(rigid 'box' at \(([-0-9.]+), ([-0-9.]+), ([-0-9.]+)\) m)");
+  std::smatch match;
+  if (!std::regex_search(output, match, line)) return Vec3::Constant(NAN);
+  return {std::stod(match[1]), std::stod(match[2]), std::stod(match[3])};
+}
+
+// The box sits at the picture's centre (pixel 480, 270 of 960 x 540); dragging it 200 pixels to
+// the right pulls it along +x, on the floor. Dragging across empty sky only turns the camera.
+TEST(Viewer, MouseDragOnABodyMovesItAndOnEmptySpaceMovesNothing) {
+  const std::string script = source("tests/viewer_drag.sh") + " " + TANDEM_CLI + " " + source("tests/data/drag_box.json");
+  std::string output;
+  ASSERT_EQ(runCommand(script + " 480 270 680 270", output), 0) << output;
+  const Vec3 dragged = finalBoxPosition(output);
+  ASSERT_TRUE(dragged.allFinite()) << output;
+  EXPECT_GT(dragged.x(), 0.3) << output;  // 200 px at 3 m is about 0.6 m
+  EXPECT_NEAR(dragged.y(), 0.2, 0.01);    // still on the floor
+  ASSERT_EQ(runCommand(script + " 700 20 900 60", output), 0) << output;
+  const Vec3 untouched = finalBoxPosition(output);
+  ASSERT_TRUE(untouched.allFinite()) << output;
+  EXPECT_LT((untouched - Vec3(0, 0.2, 0)).norm(), 0.003) << output;  // Bullet's resting drift is 1 mm
+}
+
+}  // namespace
+}  // namespace tandem
