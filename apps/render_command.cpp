@@ -76,7 +76,7 @@ int render(const RenderCommandOptions& options) {
   render::Camera camera;
   if (options.camera.empty()) {
     const auto [low, high] = render::sceneBounds(world);
-    camera = render::Camera::framing(low, high);
+    camera = render::Camera::framing(low, high, double(options.width) / options.height);
   } else {
     camera = render::Camera::lookAt(Vec3(options.camera[0], options.camera[1], options.camera[2]),
                                     Vec3(options.camera[3], options.camera[4], options.camera[5]));

@@ -87,7 +87,9 @@ class Viewer {
       m_camera = render::Camera::lookAt({c[0], c[1], c[2]}, {c[3], c[4], c[5]});
     } else if (!keepSettings || first) {
       const auto [low, high] = render::sceneBounds(*m_world);
-      m_camera = render::Camera::framing(low, high);
+      int width = 1, height = 1;
+      glfwGetFramebufferSize(m_window, &width, &height);
+      m_camera = render::Camera::framing(low, high, double(std::max(width, 1)) / std::max(height, 1));
     }
     return true;
   }
@@ -272,12 +274,14 @@ class Viewer {
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
     ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(330, 0), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(370, 0), ImGuiCond_FirstUseEver);
     ImGui::Begin("Tandem");
+    ImGui::PushItemWidth(-175);  // room for the labels
     scenePanel();
     solverPanel();
     displayPanel();
     statsPanel();
+    ImGui::PopItemWidth();
     ImGui::End();
     ImGui::Render();
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());

@@ -43,7 +43,8 @@ TEST(Camera, RayAndProjectionAreInverses) {
 
 TEST(Camera, FramingKeepsTheWholeBoxInView) {
   const Vec3 low(-0.3, 0.0, -2.0), high(0.5, 1.4, 0.7);
-  const Camera camera = Camera::framing(low, high);
+  const Camera camera = Camera::framing(low, high, double(kWidth) / kHeight);
+  double widest = 0.0;  // of the corners, in the image's half-sizes from its centre
   for (int corner = 0; corner < 8; ++corner) {
     const Vec3 p((corner & 1) ? high.x() : low.x(), (corner & 2) ? high.y() : low.y(), (corner & 4) ? high.z() : low.z());
     const Eigen::Vector3d pixel = camera.project(p, kWidth, kHeight);
@@ -51,7 +52,9 @@ TEST(Camera, FramingKeepsTheWholeBoxInView) {
     EXPECT_LT(pixel.x(), kWidth);
     EXPECT_GT(pixel.y(), 0);
     EXPECT_LT(pixel.y(), kHeight);
+    widest = std::max({widest, std::abs(pixel.x() / (kWidth / 2.0) - 1), std::abs(pixel.y() / (kHeight / 2.0) - 1)});
   }
+  EXPECT_NEAR(widest, 0.9, 1e-9);  // as near as the 90% margin lets it be
 }
 
 // The viewer's picking: the ray through a pixel finds the body drawn there, and on a cloth the
@@ -159,7 +162,7 @@ TEST(RenderCommand, ClothSpherePngShowsTheClothWhereTheCameraPutsIt) {
   World world;
   ASSERT_TRUE(buildScene(*scene, world).ok());
   const auto [low, high] = render::sceneBounds(world);
-  const Camera camera = Camera::framing(low, high);
+  const Camera camera = Camera::framing(low, high, 320.0 / 240.0);
   const DeformableId cloth{0};
   double projectedArea = 0.0;
   for (const auto& t : world.restMesh(cloth).triangles) {
@@ -170,7 +173,7 @@ TEST(RenderCommand, ClothSpherePngShowsTheClothWhereTheCameraPutsIt) {
   }
   const double expected = projectedArea / (320.0 * 240.0);
   const Coverage coverage = measure(image);
-  EXPECT_GT(expected, 0.05);  // the framing shows the cloth large
+  EXPECT_GT(expected, 0.05);  // the framing shows the cloth large (foreshortened: seen from 20 degrees up)
   EXPECT_NEAR(coverage.cloth, expected, 0.05 * expected) << "expected share " << expected;
   std::printf("cloth covers %.4f of the picture; its projected triangles %.4f\n", coverage.cloth, expected);
   EXPECT_LT(coverage.background, 0.5);  // the floor and the sphere are drawn too

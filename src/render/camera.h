@@ -5,6 +5,7 @@
 // projection follow OpenGL: the camera looks down its −z, clip depth in [−1, 1].
 #pragma once
 
+#include <tandem/shape_surface.h>
 #include <tandem/world.h>
 
 #include <Eigen/Geometry>
@@ -89,14 +90,27 @@ struct Camera {
   }
   void zoom(double wheelSteps) { distance = std::clamp(distance * std::pow(0.9, wheelSteps), 0.05, 500.0); }
 
-  // A camera at yaw and pitch that fits the box [low, high] in view.
-  static Camera framing(const Vec3& low, const Vec3& high, double yaw = 0.6, double pitch = 0.35) {
+  // A camera at yaw and pitch looking at the middle of the box [low, high], as near as it can be
+  // with every corner inside the middle 90% of an image of this aspect (width / height).
+  static Camera framing(const Vec3& low, const Vec3& high, double aspect, double yaw = 0.6, double pitch = 0.35) {
     Camera camera;
     camera.target = (low + high) / 2;
     camera.yaw = yaw;
     camera.pitch = pitch;
-    const double radius = std::max(0.5 * (high - low).norm(), 0.05);
-    camera.distance = 1.1 * radius / std::sin(camera.fovY / 2);
+    camera.distance = 1.0;
+    const Mat4 v = camera.view();
+    const Vec3 right = v.block<1, 3>(0, 0).transpose(), up = v.block<1, 3>(1, 0).transpose();
+    const Vec3 forward = -v.block<1, 3>(2, 0).transpose();
+    const double tanY = 0.9 * std::tan(camera.fovY / 2), tanX = aspect * tanY;
+    // A corner p (from the target) is in view when |p·right| ≤ tanX (d − p·forward), and so for up.
+    double distance = 0.1;
+    for (int corner = 0; corner < 8; ++corner) {
+      const Vec3 p = Vec3((corner & 1) ? high.x() : low.x(), (corner & 2) ? high.y() : low.y(),
+                          (corner & 4) ? high.z() : low.z()) - camera.target;
+      distance = std::max({distance, std::abs(p.dot(right)) / tanX + p.dot(forward),
+                           std::abs(p.dot(up)) / tanY + p.dot(forward)});
+    }
+    camera.distance = distance;
     return camera;
   }
   // A camera at `eye` looking at `target`.
@@ -111,8 +125,8 @@ struct Camera {
   }
 };
 
-// The box holding every deformable node and every rigid body but infinite planes (their
-// shapes' bounding spheres), for framing a scene.
+// The box holding every deformable node and every rigid body but infinite planes, for framing
+// a scene.
 inline std::pair<Vec3, Vec3> sceneBounds(const World& world) {
   Vec3 low = Vec3::Constant(INFINITY), high = Vec3::Constant(-INFINITY);
   for (int d = 0; d < world.deformableCount(); ++d)
@@ -121,22 +135,13 @@ inline std::pair<Vec3, Vec3> sceneBounds(const World& world) {
       high = high.cwiseMax(p);
     }
   for (int b = 0; b < world.rigidBodyCount(); ++b) {
-    const RigidShape& shape = world.rigidShape(RigidBodyId{b});
-    double reach = 0.0;
-    switch (shape.type) {
-      case ShapeType::Plane: continue;
-      case ShapeType::Box: reach = shape.halfExtents.norm(); break;
-      case ShapeType::Sphere: reach = shape.radius; break;
-      case ShapeType::Cylinder:
-      case ShapeType::Capsule: reach = shape.radius + shape.halfHeight; break;
-      case ShapeType::ConvexHull:
-      case ShapeType::TriangleMesh:
-        for (const Vec3& p : shape.points) reach = std::max(reach, p.norm());
-        break;
+    const RigidBodyId id{b};
+    const Quat orientation = world.rigidOrientation(id);
+    for (const Vec3& p : shapeSurface(world.rigidShape(id), 8).positions) {  // nothing for planes
+      const Vec3 q = world.rigidPosition(id) + orientation * p;
+      low = low.cwiseMin(q);
+      high = high.cwiseMax(q);
     }
-    const Vec3 centre = world.rigidPosition(RigidBodyId{b});
-    low = low.cwiseMin(centre - Vec3::Constant(reach));
-    high = high.cwiseMax(centre + Vec3::Constant(reach));
   }
   if (!low.allFinite()) return {Vec3(-1, 0, -1), Vec3(1, 1, 1)};  // nothing but planes
   return {low, high};

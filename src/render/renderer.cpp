@@ -147,12 +147,14 @@ struct GpuMesh {
   }
   void upload(const std::vector<Vertex>& data, const std::vector<uint32_t>& index, GLenum usage) {
     if (!array) create();
+    glBindVertexArray(array);  // the element buffer binding belongs to the vertex array
     glBindBuffer(GL_ARRAY_BUFFER, vertices);
     glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(data.size() * sizeof(Vertex)), data.data(), usage);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, indices);
     glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(index.size() * sizeof(uint32_t)), index.data(),
                  usage);
     indexCount = static_cast<GLsizei>(index.size());
+    glBindVertexArray(0);
   }
   void draw(GLenum mode) const {
     if (!indexCount) return;
@@ -248,6 +250,18 @@ struct Renderer::Impl {
     lineData.push_back(vertex(a, colour));
     lineData.push_back(vertex(b, colour));
     lineIndex.insert(lineIndex.end(), {first, first + 1});
+  }
+
+  void drawLines(const Eigen::Matrix4f& viewProjection, bool depthTested) {
+    if (lineIndex.empty()) return;
+    glUseProgram(lineProgram);
+    setMatrix(lineProgram, "viewProjection", viewProjection);
+    lines.upload(lineData, lineIndex, GL_STREAM_DRAW);
+    if (!depthTested) glDisable(GL_DEPTH_TEST);
+    lines.draw(GL_LINES);
+    glEnable(GL_DEPTH_TEST);
+    lineData.clear();
+    lineIndex.clear();
   }
 
   void refreshRigidMeshes(const World& world) {
@@ -380,8 +394,6 @@ void Renderer::draw(const World& world, const Camera& camera, int width, int hei
     glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
   }
 
-  r.lineData.clear();
-  r.lineIndex.clear();
   if (options.contacts) {
     const double h = world.stepCount() > 0 ? world.time() / double(world.stepCount()) : 1.0;
     for (const ContactReport& contact : world.contacts()) {
@@ -392,15 +404,9 @@ void Renderer::draw(const World& world, const Camera& camera, int width, int hei
       if (force.norm() > 1e-9) r.line(contact.point, contact.point + options.forceScale * force, {0.3f, 1.0f, 0.4f});
     }
   }
+  r.drawLines(viewProjection, true);  // contacts: hidden behind what is in front of them
   if (options.grabLine) r.line(options.grabLine->first, options.grabLine->second, {1.0f, 1.0f, 1.0f});
-  if (!r.lineIndex.empty()) {
-    glUseProgram(r.lineProgram);
-    r.setMatrix(r.lineProgram, "viewProjection", viewProjection);
-    r.lines.upload(r.lineData, r.lineIndex, GL_STREAM_DRAW);
-    glDisable(GL_DEPTH_TEST);  // overlays show through
-    r.lines.draw(GL_LINES);
-    glEnable(GL_DEPTH_TEST);
-  }
+  r.drawLines(viewProjection, false);  // the grab: always seen
   glBindVertexArray(0);
   glUseProgram(0);
 }
