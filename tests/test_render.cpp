@@ -14,6 +14,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
+#include <numbers>
 #include <regex>
 #include <string>
 
@@ -206,23 +207,40 @@ TEST(RenderCommand, Mp4AndFolderOutputsAndBadRequests) {
 
 // ---- The viewer, under Xvfb ---------------------------------------------------------------
 
+// After a second the cloth hangs over the sphere, so its red covers at least the upper half of
+// the sphere's silhouette, which the framing camera puts in the middle of the window (the
+// panel is on the left, clear of it).
 TEST(Viewer, RunsSixtyFramesAndTakesAScreenshotThatShowsTheScene) {
   const std::string png = std::filesystem::temp_directory_path() / "tandem_test_viewer.png";
   std::filesystem::remove(png);
   std::string output;
   const int status = runCommand("xvfb-run -a -s '-screen 0 1280x720x24' " + std::string(TANDEM_CLI) + " view " +
                                     source("scenes/cloth_sphere.json") +
-                                    " --frames 60 --width 640 --height 480 --screenshot " + png,
+                                    " --frames 60 --width 960 --height 540 --screenshot " + png,
                                 output);
   ASSERT_EQ(status, 0) << output;
   EXPECT_NE(output.find("for 60 frames"), std::string::npos) << output;
   const Image image = loadPng(png);
   ASSERT_TRUE(image.pixels);
-  EXPECT_EQ(image.width, 640);
-  EXPECT_EQ(image.height, 480);
+  EXPECT_EQ(image.width, 960);
+  EXPECT_EQ(image.height, 540);
+
+  Result<Scene> scene = loadScene(source("scenes/cloth_sphere.json"));
+  ASSERT_TRUE(scene.ok());
+  World world;
+  ASSERT_TRUE(buildScene(*scene, world).ok());
+  const auto [low, high] = render::sceneBounds(world);
+  const Camera camera = Camera::framing(low, high, 960.0 / 540.0);
+  const RigidBodyId sphere = *world.findRigidBody("sphere");
+  const Vec3 centre = world.rigidPosition(sphere);
+  const Vec3 right = camera.view().block<1, 3>(0, 0).transpose();
+  const double radius = (camera.project(centre + world.rigidShape(sphere).radius * right, 960, 540) -
+                         camera.project(centre, 960, 540)).head<2>().norm();
+  const double halfSilhouette = 0.5 * std::numbers::pi * radius * radius / (960.0 * 540.0);
   const Coverage coverage = measure(image);
-  EXPECT_GT(coverage.cloth, 0.02);  // the cloth is there (and the panel, floor and sky besides)
-  EXPECT_LT(coverage.background, 0.5);
+  EXPECT_GT(coverage.cloth, halfSilhouette) << "half the sphere's silhouette: " << halfSilhouette;
+  std::printf("cloth covers %.4f of the window; half the sphere's silhouette is %.4f\n", coverage.cloth, halfSilhouette);
+  EXPECT_LT(coverage.background, 0.5);  // not blank: floor, sphere, cloth and panel
 }
 
 Vec3 finalBoxPosition(const std::string& output) {
