@@ -16,6 +16,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -212,6 +213,13 @@ int main(int argc, char** argv) {
 
 #ifdef TANDEM_HAS_RENDER
   const std::function<int()> runRenderCommand = tandem::cli::addRenderCommands(app);
+#else
+  for (const char* name : {"render", "view"})
+    app.add_subcommand(name, "(not built: needs GLFW, EGL, OpenGL and Dear ImGui)")->allow_extras()->callback([] {
+      std::fprintf(stderr, "tandem: this build has no rendering; install libglfw3-dev libegl-dev libgl-dev "
+                           "libimgui-dev and build again (scripts/setup.sh does)\n");
+      std::exit(1);
+    });
 #endif
 
   CLI11_PARSE(app, argc, argv);

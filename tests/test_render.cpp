@@ -122,6 +122,15 @@ Image loadPng(const std::string& path) {
   return image;
 }
 
+// Builds a scene file as it is at t = 0 and returns the camera that `tandem render` and
+// `tandem view` frame it with in an image of this aspect.
+Camera buildFramed(World& world, const std::string& file, double aspect) {
+  Result<Scene> scene = loadScene(source(file));
+  EXPECT_TRUE(scene.ok() && buildScene(*scene, world).ok()) << file;
+  const auto [low, high] = render::sceneBounds(world);
+  return Camera::framing(low, high, aspect);
+}
+
 // Deformables are drawn in warm colours (the first a strong red), everything else in greys and
 // cool colours: a clearly red pixel is cloth.
 bool isClothRed(const unsigned char* p) { return p[0] > 40 && p[0] > 1.8 * p[1] && p[0] > 1.8 * p[2]; }
@@ -158,12 +167,8 @@ TEST(RenderCommand, ClothSpherePngShowsTheClothWhereTheCameraPutsIt) {
   EXPECT_EQ(image.width, 320);
   EXPECT_EQ(image.height, 240);
 
-  Result<Scene> scene = loadScene(source("scenes/cloth_sphere.json"));
-  ASSERT_TRUE(scene.ok());
   World world;
-  ASSERT_TRUE(buildScene(*scene, world).ok());
-  const auto [low, high] = render::sceneBounds(world);
-  const Camera camera = Camera::framing(low, high, 320.0 / 240.0);
+  const Camera camera = buildFramed(world, "scenes/cloth_sphere.json", 320.0 / 240.0);
   const DeformableId cloth{0};
   double projectedArea = 0.0;
   for (const auto& t : world.restMesh(cloth).triangles) {
@@ -221,16 +226,12 @@ TEST(Viewer, RunsSixtyFramesAndTakesAScreenshotThatShowsTheScene) {
   ASSERT_EQ(status, 0) << output;
   EXPECT_NE(output.find("for 60 frames"), std::string::npos) << output;
   const Image image = loadPng(png);
-  ASSERT_TRUE(image.pixels);
+  ASSERT_TRUE(image.pixels) << "no PNG at " << png;
   EXPECT_EQ(image.width, 960);
   EXPECT_EQ(image.height, 540);
 
-  Result<Scene> scene = loadScene(source("scenes/cloth_sphere.json"));
-  ASSERT_TRUE(scene.ok());
   World world;
-  ASSERT_TRUE(buildScene(*scene, world).ok());
-  const auto [low, high] = render::sceneBounds(world);
-  const Camera camera = Camera::framing(low, high, 960.0 / 540.0);
+  const Camera camera = buildFramed(world, "scenes/cloth_sphere.json", 960.0 / 540.0);
   const RigidBodyId sphere = *world.findRigidBody("sphere");
   const Vec3 centre = world.rigidPosition(sphere);
   const Vec3 right = camera.view().block<1, 3>(0, 0).transpose();
