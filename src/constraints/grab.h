@@ -3,8 +3,8 @@
 // user's hand. It is a row of the interleaved solve like any other, so whatever the grabbed
 // point is tied to (the cloth's other rows, the sphere under it) answers in the same step.
 //
-// Derivation: the vector constraint of a fixed point or an anchor, made soft (Catto's soft
-// step, as in Box2D v3). With p the grabbed point (p = Σ wₖ xₖ on a deformable; p = c + a,
+// Derivation: the vector constraint of a fixed point or an anchor, made soft. With p the
+// grabbed point (p = Σ wₖ xₖ on a deformable; p = c + a,
 // a = R r, on a rigid body) and y the target:
 //
 //   C  = p − y_old                    (3 rows, metres, at the start of the step)
