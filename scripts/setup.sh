@@ -9,7 +9,7 @@ packages=(build-essential cmake ninja-build pkg-config
           libgtest-dev libbenchmark-dev
           # rendering: `tandem view` (GLFW, Dear ImGui), `tandem render` (EGL with no display,
           # Mesa's software rasteriser, ffmpeg for mp4); Xvfb and xdotool for the viewer's tests
-          libgl-dev libegl-dev libglfw3-dev libimgui-dev libstb-dev libegl-mesa0 libgl1-mesa-dri
+          libopengl-dev libgl-dev libegl-dev libglfw3-dev libimgui-dev libstb-dev libegl-mesa0 libgl1-mesa-dri
           ffmpeg xvfb xauth xdotool)
 
 missing=()
