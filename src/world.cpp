@@ -130,8 +130,10 @@ Status World::step(double h) {
   timed(Stage::Solve);
   w.rememberContacts();
   w.integrateNodes(h);                  // 7. symplectic Euler for nodes; Bullet for rigid bodies;
-  w.bullet.integrate(h);                //    then the direct blocks' rows projected back by position
+  w.bullet.integrate(h);                //    then the direct blocks' rows projected back by position,
+                                        //    and the swept inextensible edges limited to 1 % stretch
   w.projectDirectBlocks();
+  w.limitStrainOfSweptRows();
   timed(Stage::Integrate);
 
   report.bulletContactManifolds = w.bullet.manifoldCount();  // 8. report

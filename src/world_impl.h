@@ -12,6 +12,7 @@
 #include "models/position_based.h"
 #include "solver/constraint_rows.h"
 #include "solver/direct_block.h"
+#include "solver/strain_limiting.h"
 
 #include <algorithm>
 #include <chrono>
@@ -382,6 +383,50 @@ struct World::Impl final : bullet::SolverHooks {
   // each block projects its nodes back onto its rows with the step's own factorisation.
   void projectDirectBlocks() {
     for (DirectBlock& block : directBlocks) block.projectPositions(rows, nodes);
+  }
+
+  // Inextensible edges the sweep solved (not a block) brought back within 1 % by position,
+  // nodes kept out of the shapes they touched (solver/strain_limiting.h).
+  void limitStrainOfSweptRows() {
+    std::vector<char> limited(deformables.size(), 0);
+    for (const InextensibilityRow& row : rows.inextensibility)
+      if (!row.inDirectBlock && (std::isinf(row.lambdaMin) || std::isinf(row.lambdaMax)))
+        limited[&deformableOfNode(row.node[0]) - deformables.data()] = 1;
+    if (std::find(limited.begin(), limited.end(), 1) == limited.end()) return;
+    std::vector<double> weight = nodes.inverseMass;  // attached nodes stay where their rows put them
+    for (const FixedPointRow& row : rows.fixedPoints) weight[row.node] = 0.0;
+    for (const AnchorRow& row : rows.anchors)
+      for (int k = 0; k < 4; ++k)
+        if (row.weight[k] != 0.0) weight[row.node[k]] = 0.0;
+    // Every node of a body with such rows near a shape the body touched this step is kept out of it.
+    std::vector<CollisionRigid> shapes(bullet.rigidBodyCount());
+    std::vector<std::vector<char>> touched(deformables.size(), std::vector<char>(shapes.size(), 0));
+    for (const ContactRow& row : rows.contacts)
+      if (row.body >= 0) touched[&deformableOfNode(row.node[0]) - deformables.data()][row.body] = 1;
+    std::vector<NodeOnShape> touching;
+    for (size_t d = 0; d < deformables.size(); ++d) {
+      if (!limited[d]) continue;
+      const DeformableRecord& body = deformables[d];
+      for (size_t b = 0; b < shapes.size(); ++b) {
+        if (!touched[d][b]) continue;
+        shapes[b] = {rigidShapes[b].get(), bullet.position(int(b)), bullet.orientation(int(b)), Vec3::Zero(),
+                     Vec3::Zero(), 0.0, 0.0};
+        // Only nodes near the shape: the passes undo one step's stretch, a few edges' worth.
+        double longestEdge = 0.0;
+        for (const auto& e : body.restMesh.edges)
+          longestEdge = std::max(longestEdge, (body.restMesh.positions[e[1]] - body.restMesh.positions[e[0]]).norm());
+        const double reach = body.collision.thickness + 5 * longestEdge;
+        for (int32_t n = body.firstNode; n < body.firstNode + body.nodeCount; ++n) {
+          const Vec3 local = shapes[b].orientation.conjugate() * (nodes.position[n] - shapes[b].position);
+          if (geometry::distanceToShape(*shapes[b].shape, local, reach).distance < reach)
+            touching.push_back({n, &shapes[b], body.collision.thickness});
+        }
+      }
+    }
+    const std::vector<Vec3> before = nodes.position;
+    std::vector<Vec3> pushed(nodes.size(), Vec3::Zero());
+    limitStrain(rows.inextensibility, touching, nodes.position, weight, pushed);
+    for (size_t n = 0; n < nodes.size(); ++n) nodes.velocity[n] += (nodes.position[n] - before[n] - pushed[n]) / timeStep;
   }
 
   // A non-finite or absurdly fast state means the step diverged: say which body, and stop.
