@@ -131,9 +131,9 @@ Status World::step(double h) {
   w.rememberContacts();
   w.integrateNodes(h);                  // 7. symplectic Euler for nodes; Bullet for rigid bodies;
   w.bullet.integrate(h);                //    then the direct blocks' rows projected back by position,
-                                        //    and the swept inextensible edges limited to 1 % stretch
+                                        //    and the edges no block projected limited to 1 % stretch
   w.projectDirectBlocks();
-  w.limitStrainOfSweptRows();
+  w.limitStrainOfUnprojectedRows();
   timed(Stage::Integrate);
 
   report.bulletContactManifolds = w.bullet.manifoldCount();  // 8. report

@@ -73,6 +73,7 @@ struct World::Impl final : bullet::SolverHooks {
   ConstraintRows rows;
   std::vector<DirectBlock> directBlocks;
   bool directBlocksStale = true;  // rows were added since the blocks were built
+  std::vector<char> unprojected;  // per deformable: in a block that could not project this step
   struct ContactImpulse {
     double normal;
     Vec3 friction;
@@ -381,23 +382,37 @@ struct World::Impl final : bullet::SolverHooks {
   // Post-stabilisation (Cline and Pai 2003): velocity-level rows leave a drift of order
   // h² v² / L (a cloth corner whipping round at 60 rad/s stretches its edges by half in a step);
   // each block projects its nodes back onto its rows with the step's own factorisation.
+  // Blocks that cannot (they hold a dynamic body) leave their edges to strain limiting.
   void projectDirectBlocks() {
-    for (DirectBlock& block : directBlocks) block.projectPositions(rows, nodes);
+    unprojected.assign(deformables.size(), 0);
+    for (DirectBlock& block : directBlocks) {
+      if (block.projectPositions(rows, nodes)) continue;
+      for (const DirectBlock::NodeRange& range : block.ranges())
+        unprojected[&deformableOfNode(range.first) - deformables.data()] = 1;
+    }
   }
 
-  // Inextensible edges the sweep solved (not a block) brought back within 1 % by position,
-  // nodes kept out of the shapes they touched (solver/strain_limiting.h).
-  void limitStrainOfSweptRows() {
+  // Inextensible edges no block projected brought back within 1 % by position, nodes kept out
+  // of the shapes they touched (solver/strain_limiting.h).
+  void limitStrainOfUnprojectedRows() {
+    std::vector<int32_t> limitedRows;
     std::vector<char> limited(deformables.size(), 0);
-    for (const InextensibilityRow& row : rows.inextensibility)
-      if (!row.inDirectBlock && (std::isinf(row.lambdaMin) || std::isinf(row.lambdaMax)))
-        limited[&deformableOfNode(row.node[0]) - deformables.data()] = 1;
-    if (std::find(limited.begin(), limited.end(), 1) == limited.end()) return;
-    std::vector<double> weight = nodes.inverseMass;  // attached nodes stay where their rows put them
+    for (size_t r = 0; r < rows.inextensibility.size(); ++r) {
+      const InextensibilityRow& row = rows.inextensibility[r];
+      const auto d = static_cast<size_t>(&deformableOfNode(row.node[0]) - deformables.data());
+      if ((row.inDirectBlock && !unprojected[d]) || !(std::isinf(row.lambdaMin) || std::isinf(row.lambdaMax))) continue;
+      limitedRows.push_back(static_cast<int32_t>(r));
+      limited[d] = 1;
+    }
+    if (limitedRows.empty()) return;
+    // Nodes held to the world (fixed points, anchors to static or kinematic bodies) stay where
+    // their rows put them; the rest move by their inverse masses, so momentum is kept (a node
+    // anchored to a dynamic body that moves is pulled back by its anchor's bias next step).
+    std::vector<double> weight = nodes.inverseMass;
     for (const FixedPointRow& row : rows.fixedPoints) weight[row.node] = 0.0;
     for (const AnchorRow& row : rows.anchors)
       for (int k = 0; k < 4; ++k)
-        if (row.weight[k] != 0.0) weight[row.node[k]] = 0.0;
+        if (row.weight[k] != 0.0 && !bullet.isDynamic(row.body)) weight[row.node[k]] = 0.0;
     // Every node of a body with such rows near a shape the body touched this step is kept out of it.
     std::vector<CollisionRigid> shapes(bullet.rigidBodyCount());
     std::vector<std::vector<char>> touched(deformables.size(), std::vector<char>(shapes.size(), 0));
@@ -425,7 +440,7 @@ struct World::Impl final : bullet::SolverHooks {
     }
     const std::vector<Vec3> before = nodes.position;
     std::vector<Vec3> pushed(nodes.size(), Vec3::Zero());
-    limitStrain(rows.inextensibility, touching, nodes.position, weight, pushed);
+    limitStrain(rows.inextensibility, limitedRows, touching, nodes.position, weight, pushed);
     for (size_t n = 0; n < nodes.size(); ++n) nodes.velocity[n] += (nodes.position[n] - before[n] - pushed[n]) / timeStep;
   }
 

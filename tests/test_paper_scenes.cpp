@@ -132,9 +132,6 @@ TEST(PaperScenes, RopeWheelTheHeavyBodyPullsTheRopeAndTheRopeTurnsTheWheel) {
 }
 
 TEST(PaperScenes, RopeWheelRopeStaysInextensible) {
-  GTEST_SKIP() << "not yet: when the heavy body lands, the slack strip's cross edges stretch by up to 39 % "
-                  "(any K): a block holding dynamic bodies is not projected back onto its rows by position, and "
-                  "projecting it with the bodies moved or held both failed (issue 5 note)";
   PaperScene paper("rope_wheel.json");
   paper.run(kSeconds);
   expectSound(paper);

@@ -301,11 +301,11 @@ void DirectBlock::release(int32_t row) {
   m_entries[diagonal] = Eigen::Triplet<double>(m_entries[diagonal].row(), m_entries[diagonal].col(), -1.0);
 }
 
-void DirectBlock::projectPositions(const ConstraintRows& rows, NodeArrays& nodes) {
-  if (m_rows.empty() || !m_factorOk) return;
+bool DirectBlock::projectPositions(const ConstraintRows& rows, NodeArrays& nodes) {
+  if (m_rows.empty() || !m_factorOk) return false;
   // The solve would move dynamic bodies too; until they can be moved by position as well,
   // blocks holding one are left to the velocity-level correction.
-  if (std::any_of(m_bodyDof.begin(), m_bodyDof.end(), [](int32_t dof) { return dof >= 0; })) return;
+  if (std::any_of(m_bodyDof.begin(), m_bodyDof.end(), [](int32_t dof) { return dof >= 0; })) return false;
   const int32_t rowCount = scalarRowCount();
   m_rhs.setZero(m_dofCount + rowCount);
   for (int32_t r = 0; r < rowCount; ++r) {
@@ -332,6 +332,7 @@ void DirectBlock::projectPositions(const ConstraintRows& rows, NodeArrays& nodes
     if (step.norm() > largest) step *= largest / step.norm();
     nodes.position[globalNode(n)] += step;
   }
+  return true;
 }
 
 void DirectBlock::clearImpulses(ConstraintRows& rows) const {

@@ -95,8 +95,10 @@ class DirectBlock {
 
   // After integration: moves the block's nodes by Δx solving [H Jᵀ; J −E] [Δx; −μ] = [0; −C(x)]
   // with this step's factorisation (J from the start of the step), so that its fixed points and
-  // inextensible edges hold by position too; contact rows hold their points still.
-  void projectPositions(const ConstraintRows& rows, NodeArrays& nodes);
+  // inextensible edges hold by position too; contact rows hold their points still. Returns
+  // false when it did not (no rows, no factorisation, or a dynamic body it would have to move).
+  bool projectPositions(const ConstraintRows& rows, NodeArrays& nodes);
+  const std::vector<NodeRange>& ranges() const { return m_ranges; }
 
   // One exact solve of the block against the current velocities.
   void solve(ConstraintRows& rows, SolverContext& ctx, SweepStats& stats);

@@ -1,6 +1,7 @@
-// Strain limiting: after the nodes move, inextensible edges solved by the iterative sweep (not
-// by a direct block, which projects its own rows exactly) are brought back within a tolerance of
-// their rest length by position, Gauss-Seidel over the edges (Provot 1995), interleaved with
+// Strain limiting: after the nodes move, inextensible edges that no direct block projected
+// exactly (those the iterative sweep solved, and those of blocks holding dynamic bodies, which
+// a block's projection would have to move) are brought back within a tolerance of their rest
+// length by position, Gauss-Seidel over the edges (Provot 1995), interleaved with
 // pushing nodes back out of the rigid shapes they touched this step.
 //
 // Why: projected Gauss-Seidel on the velocity rows of a fine grid converges slowly (a 51×51
@@ -14,9 +15,10 @@
 //
 //   Δ = ℓ − L^±,   x_i ← x_i + wᵢ / (wᵢ + w_j) Δ n,   x_j ← x_j − w_j / (wᵢ + w_j) Δ n
 //
-// (momentum-preserving: Σ m Δx = 0). Only the bounded sides of each row that have no force
-// bound are limited (a row with maxForce may stretch on purpose); nodes held by fixed points or
-// anchors count as immovable, so a limited edge never pulls a node off its attachment.
+// (momentum-preserving: Σ m Δx = 0). Only the sides of each row that have no force bound are
+// limited (a row with maxForce may stretch on purpose). Nodes held to the world (fixed points,
+// anchors to static or kinematic bodies) count as immovable; a node anchored to a dynamic body
+// moves like any other, and its anchor's bias pulls the two together in the next step.
 // A node moved by the edges also has its velocity changed by Δx / h, as position-based dynamics
 // does: left alone, a velocity the sweep could not stop (a cloth's edge falling past the sphere
 // its neighbour rests on) keeps growing step after step while the projection keeps undoing it.
@@ -49,7 +51,6 @@ struct NodeOnShape {
 
 // One projection of an edge; `weight` is the nodes' inverse mass for this pass (0: immovable).
 inline void limitEdge(const InextensibilityRow& row, std::span<Vec3> x, std::span<const double> weight) {
-  if (row.inDirectBlock) return;
   const double wi = weight[row.node[0]], wj = weight[row.node[1]];
   if (wi + wj == 0.0) return;
   const Vec3 d = x[row.node[1]] - x[row.node[0]];
@@ -76,13 +77,13 @@ inline void keepOutOfShape(const NodeOnShape& contact, std::span<Vec3> x, std::s
   pushed[contact.node] += push;
 }
 
-// `rows`: all of them; those in a direct block are skipped. (The projections are not added to
-// the rows' λ: warm started with them, the sweep applied them a second time and a draped cloth
-// slid off its sphere.)
-inline void limitStrain(std::span<const InextensibilityRow> rows, std::span<const NodeOnShape> contacts,
-                        std::span<Vec3> x, std::span<const double> weight, std::span<Vec3> pushed) {
+// `limited`: indices into `rows`. (The projections are not added to the rows' λ: warm started
+// with them, the sweep applied them a second time and a draped cloth slid off its sphere.)
+inline void limitStrain(std::span<const InextensibilityRow> rows, std::span<const int32_t> limited,
+                        std::span<const NodeOnShape> contacts, std::span<Vec3> x, std::span<const double> weight,
+                        std::span<Vec3> pushed) {
   for (int pass = 0; pass < kStrainPasses; ++pass) {
-    for (const InextensibilityRow& row : rows) limitEdge(row, x, weight);
+    for (int32_t r : limited) limitEdge(rows[r], x, weight);
     for (const NodeOnShape& contact : contacts) keepOutOfShape(contact, x, pushed);
   }
 }
