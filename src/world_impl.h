@@ -118,11 +118,27 @@ struct World::Impl final : bullet::SolverHooks {
                             body.restMesh.positions,  body.paradigmEdges,
                             body.restMesh.tetrahedra, body.paradigm.stiffness,
                             body.paradigm.damping,    body.paradigm.iterations,
+                            {},                       {},
                             {}};
-    // PBD is not held yet: with its projections weighted like shape matching's fit, a PBD jelly
-    // resting on a box blew up (24 m/s within three steps) for reasons not yet found.
+    // PBD projects its supports as constraints among its own (weighting held nodes in the
+    // projections, as shape matching's fit does, blew a jelly resting on a box up); what they
+    // pushed is the supports' impulse, (1 − γ) m Δ / h per node.
     if (body.paradigm.type == ParadigmType::PositionBased) {
+      std::vector<SupportPlane> planes;
+      for (int32_t i = 0; i < body.nodeCount; ++i) {
+        const int32_t n = body.firstNode + i;
+        if (body.supports.normal[i].isZero() || nodes.inverseMass[n] == 0.0) continue;
+        const Vec3& normal = body.supports.normal[i];
+        planes.push_back({i, normal, normal.dot(nodes.position[n]) + h * body.supports.targetSpeed(i, h)});
+      }
+      std::vector<double> push(body.nodeCount, 0.0);
+      model.supports = planes;
+      model.supportPush = push;
       applyPositionBasedDynamics(model, nodes, h);
+      for (const SupportPlane& plane : planes)
+        if (push[plane.node] > 0)
+          body.supports.recordHold(plane.node, (1.0 - body.paradigm.damping) * push[plane.node] /
+                                                   (nodes.inverseMass[body.firstNode + plane.node] * h));
       return;
     }
     constexpr double kHeldWeight = 1000.0;  // how much heavier a held node counts in the fit

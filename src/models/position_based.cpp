@@ -77,6 +77,12 @@ std::vector<Vec3> positionBasedGoals(const PositionBasedBody& body, std::span<co
       const double scale = -k * (volume - restVolume) / denominator;
       for (int n = 0; n < 4; ++n) x[t[n]] += scale * inverseMass[t[n]] * gradient[n];
     }
+    for (const SupportPlane& plane : body.supports) {  // hard, like the contacts they stand for
+      const double below = plane.minimum - plane.normal.dot(x[plane.node]);
+      if (below <= 0) continue;
+      x[plane.node] += below * plane.normal;
+      if (!body.supportPush.empty()) body.supportPush[plane.node] += below;
+    }
   }
   return x;
 }

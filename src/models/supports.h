@@ -59,7 +59,8 @@ struct Supports {
   // The normal velocity a held node gets this step.
   double targetSpeed(size_t i, double timeStep) const { return speed[i] - std::max(gap[i], 0.0) / timeStep; }
 
-  // For models that take v* as it is (shape matching; PBD is not held yet): raises each
+  // For models that take v* as it is (shape matching; PBD projects its supports as planes
+  // among its constraints, models/position_based.h): raises each
   // supported node's normal velocity to its target, recording the impulse. `velocity` and
   // `inverseMass` are the body's.
   void hold(std::span<Vec3> velocity, std::span<const double> inverseMass, double timeStep) {
