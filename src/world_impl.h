@@ -457,7 +457,6 @@ struct World::Impl final : bullet::SolverHooks {
     const std::vector<Vec3> before = nodes.position;
     std::vector<Vec3> pushed(nodes.size(), Vec3::Zero());
     limitStrain(rows.inextensibility, limitedRows, touching, nodes.position, weight, pushed);
-
     for (size_t n = 0; n < nodes.size(); ++n) nodes.velocity[n] += (nodes.position[n] - before[n] - pushed[n]) / timeStep;
   }
 

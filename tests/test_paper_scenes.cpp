@@ -140,9 +140,6 @@ TEST(PaperScenes, RopeWheelRopeStaysInextensible) {
 }
 
 TEST(PaperScenes, JellyDishTheBarStaysOnTopOfTheJellies) {
-  GTEST_SKIP() << "not yet: all four jellies carry the bar within 3 % of their height, but the PBD and shape-"
-                  "matching jellies keep jittering (up to 0.12 and 0.17 m/s at 3 s), and a step costs about 85 ms "
-                  "(issue 4)";
   PaperScene paper("jelly_dish.json");
   paper.run(kSeconds);
   World& world = paper.world;

@@ -23,8 +23,8 @@
 // does: left alone, a velocity the sweep could not stop (a cloth's edge falling past the sphere
 // its neighbour rests on) keeps growing step after step while the projection keeps undoing it.
 //
-// Contacts: every node of a limited body is kept out of the rigid shapes the body touched this
-// step (put back on the surface, thickness away, along the normal) in the same passes, so the
+// Contacts: every node of a limited body near a rigid shape the body touched this step is kept
+// out of it (put back on the surface, thickness away, along the normal) in the same passes, so the
 // edges cannot drag it through them; those pushes move positions only, like the contacts'
 // own push-out.
 #pragma once
