@@ -51,6 +51,10 @@ int render(const RenderCommandOptions& options) {
   OutputKind kind = OutputKind::Folder;
   if (out.extension() == ".png") kind = OutputKind::Png;
   if (out.extension() == ".mp4") kind = OutputKind::Video;
+  if (kind == OutputKind::Folder && !options.out.ends_with('/') && out.has_extension()) {
+    std::fprintf(stderr, "tandem: --out %s: give FILE.png, FILE.mp4 or a folder (DIR/)\n", options.out.c_str());
+    return 2;
+  }
   if (kind == OutputKind::Png && options.frames > 1) {
     std::fprintf(stderr, "tandem: --out %s holds one frame; for %d frames give a folder (DIR/) or an .mp4 file\n",
                  options.out.c_str(), options.frames);

@@ -208,6 +208,11 @@ TEST(RenderCommand, Mp4AndFolderOutputsAndBadRequests) {
   EXPECT_NE(output.find("holds one frame"), std::string::npos) << output;
   EXPECT_NE(runCommand(std::string(TANDEM_CLI) + " render hanging_rope --out /no/such/folder/x.png", output), 0);
   EXPECT_NE(output.find("cannot write"), std::string::npos) << output;
+  EXPECT_NE(runCommand(std::string(TANDEM_CLI) + " render hanging_rope --out " + (folder / "x.gif").string(), output), 0);
+  EXPECT_NE(output.find("give FILE.png, FILE.mp4 or a folder"), std::string::npos) << output;
+  EXPECT_FALSE(std::filesystem::exists(folder / "x.gif"));
+  EXPECT_NE(runCommand(std::string(TANDEM_CLI) + " render no_such_scene --out x.png", output), 0);
+  EXPECT_NE(output.find("no scene file or built-in scene"), std::string::npos) << output;
 }
 
 // ---- The viewer, under Xvfb ---------------------------------------------------------------
