@@ -73,6 +73,7 @@ class Viewer {
       (void)world->setSettings(settings);
     }
     const bool first = !m_world;
+    m_renderer->forgetWorld();
     m_world = std::move(world);
     m_info = *info;
     m_scene = scene;

@@ -2,6 +2,8 @@
 // offscreen (EGL) checked against the camera's own projection of the cloth; `tandem view`
 // under Xvfb, its screenshot and a scripted mouse drag (xdotool).
 #include "render/camera.h"
+#include "render/offscreen.h"
+#include "render/renderer.h"
 
 #include <tandem/scene_file.h>
 #include <tandem/world.h>
@@ -94,6 +96,39 @@ TEST(Picking, PixelRaysFindTheBodyAndTheClothPointUnderThem) {
 
   const render::Ray sky = camera.ray(kWidth / 2.0, 1.0, kWidth, kHeight);
   EXPECT_FALSE(world.castRay(sky.origin, sky.direction).has_value());
+}
+
+// The renderer keeps rigid meshes by body index: after forgetWorld() a renderer that drew one
+// world draws another exactly as a fresh renderer does (the viewer's scene picker and reset).
+TEST(Renderer, DrawsANewWorldLikeAFreshRendererAfterForgettingTheOld) {
+  auto makeWorld = [](const RigidShape& shape) {
+    auto world = std::make_unique<World>();
+    RigidBodyDesc body;
+    body.name = "body";
+    body.shape = shape;
+    body.position = {0, 0.5, 0};
+    EXPECT_TRUE(world->addRigidBody(body).ok());
+    return world;
+  };
+  const std::unique_ptr<World> boxWorld = makeWorld(RigidShape::box({0.4, 0.1, 0.4}));
+  const std::unique_ptr<World> ballWorld = makeWorld(RigidShape::sphere(0.3));
+  Result<std::unique_ptr<render::OffscreenTarget>> target = render::OffscreenTarget::create(96, 64);
+  ASSERT_TRUE(target.ok()) << target.message();
+  Result<std::unique_ptr<render::Renderer>> reused = render::Renderer::create();
+  Result<std::unique_ptr<render::Renderer>> fresh = render::Renderer::create();
+  ASSERT_TRUE(reused.ok() && fresh.ok());
+  const Camera camera = Camera::lookAt({0, 1.5, 2}, {0, 0.5, 0});
+  auto draw = [&](render::Renderer& renderer, const World& world) {
+    (*target)->bind();
+    renderer.draw(world, camera, 96, 64, {});
+    return (*target)->readPixels();
+  };
+  const std::vector<uint8_t> box = draw(**reused, *boxWorld);
+  (*reused)->forgetWorld();
+  const std::vector<uint8_t> ballReused = draw(**reused, *ballWorld);
+  const std::vector<uint8_t> ballFresh = draw(**fresh, *ballWorld);
+  EXPECT_EQ(ballReused, ballFresh);
+  EXPECT_NE(box, ballFresh);  // the two worlds do look different
 }
 
 // ---- With the command ---------------------------------------------------------------------

@@ -326,6 +326,11 @@ struct Renderer::Impl {
 };
 
 Renderer::Renderer() : m_impl(std::make_unique<Impl>()) {}
+
+void Renderer::forgetWorld() {
+  for (GpuMesh& mesh : m_impl->rigidMeshes) mesh.destroy();
+  m_impl->rigidMeshes.clear();
+}
 Renderer::~Renderer() = default;
 
 Result<std::unique_ptr<Renderer>> Renderer::create() {

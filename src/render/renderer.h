@@ -38,7 +38,10 @@ class Renderer {
   Renderer& operator=(const Renderer&) = delete;
 
   // Draws into the bound framebuffer's (0, 0, width, height) viewport, clearing it first.
+  // Rigid shapes are turned into meshes once, by body index: call forgetWorld() before drawing
+  // a different World with the same renderer.
   void draw(const World& world, const Camera& camera, int width, int height, const RenderOptions& options);
+  void forgetWorld();
 
  private:
   Renderer();
