@@ -77,6 +77,7 @@ struct World::Impl final : bullet::SolverHooks {
   struct ContactImpulse {
     double normal;
     Vec3 friction;
+    bool releasedFromBlock;
   };
   std::unordered_map<uint64_t, ContactImpulse> previousContacts;  // by feature, for warm starting
 
@@ -212,13 +213,14 @@ struct World::Impl final : bullet::SolverHooks {
       if (previous == previousContacts.end()) continue;
       row.lambdaNormal = previous->second.normal;
       row.warmFriction = previous->second.friction;
+      row.releasedLastStep = previous->second.releasedFromBlock;
     }
   }
 
   void rememberContacts() {
     previousContacts.clear();
     for (const ContactRow& row : rows.contacts)
-      previousContacts[row.key] = {row.lambdaNormal, row.impulse() - row.lambdaNormal * row.normal};
+      previousContacts[row.key] = {row.lambdaNormal, row.impulse() - row.lambdaNormal * row.normal, row.releasedFromBlock};
     addHoldImpulsesToSupports();
     rememberSupports();
   }

@@ -65,6 +65,8 @@ struct ContactRow {
   double lambdaNormal = 0.0;               // N·s, ≥ 0
   Eigen::Vector2d lambdaTangent = Eigen::Vector2d::Zero();
   bool inDirectBlock = false;  // its normal row is solved by a direct block
+  bool releasedFromBlock = false;  // a block let it go this step (it would have pulled)
+  bool releasedLastStep = false;   // the same feature was let go last step
 
   Vec3 impulse() const { return lambdaNormal * normal + lambdaTangent[0] * tangent1 + lambdaTangent[1] * tangent2; }
   // A node against a rigid shape (not a face, edge or another body's surface).

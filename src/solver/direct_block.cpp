@@ -90,6 +90,14 @@ void DirectBlock::addContacts(ConstraintRows& rows, std::span<const RigidSolverS
   for (size_t i = 0; i < rows.contacts.size(); ++i) {
     ContactRow& row = rows.contacts[i];
     if (!joins(row)) continue;
+    // A contact with a still surface let go before, and not sunk in since, stays with the sweep
+    // (else a resting jelly's same contacts with its dish joined and were let go every step,
+    // each refactorising the block). One with a moving body joins again: a box on a hammock
+    // must be carried by the whole cloth.
+    if (row.releasedLastStep && row.gap > -slop && rigid[row.body].inverseMass == 0.0) {
+      row.releasedFromBlock = true;
+      continue;
+    }
     row.inDirectBlock = true;
     row.lambdaNormal = 0.0;
     if (std::find(m_bodies.begin(), m_bodies.end(), row.body) == m_bodies.end()) m_bodies.push_back(row.body);
@@ -402,7 +410,10 @@ void DirectBlock::solve(ConstraintRows& rows, SolverContext& ctx, SweepStats& st
   }
   // A released contact goes back to the PGS sweep, which may still push with it.
   for (size_t r = m_persistentRows; r < m_rows.size(); ++r)
-    if (m_released[r]) rows.contacts[m_rows[r].index].inDirectBlock = false;
+    if (m_released[r]) {
+      rows.contacts[m_rows[r].index].inDirectBlock = false;
+      rows.contacts[m_rows[r].index].releasedFromBlock = true;
+    }
   for (int32_t r = 0; r < rowCount; ++r)
     if (m_released[r]) m_solution[m_dofCount + r] = releasedHere[r] ? -prescribed[r] : 0.0;
 
