@@ -242,7 +242,7 @@ struct World::Impl final : bullet::SolverHooks {
       if (!row.isNodeOnRigid() || rigid[row.body].inverseMass != 0.0) continue;
       const double surfaceSpeed = row.normal.dot(rigid[row.body].velocityAt(row.offset));
       const double gapAtEnd = row.gap + timeStep * row.normal.dot(contactRelativeVelocity(row, ctx));
-      DeformableRecord& body = deformables[static_cast<size_t>(&deformableOfNode(row.node[0]) - deformables.data())];
+      DeformableRecord& body = deformables[deformableIndexOfNode(row.node[0])];
       body.supports.add(row.node[0], row.body, row.normal, gapAtEnd, surfaceSpeed);
     }
   }
@@ -279,7 +279,7 @@ struct World::Impl final : bullet::SolverHooks {
     };
     std::vector<int32_t> firstDeformableOnBody(bullet.rigidBodyCount(), -1);
     for (const AnchorRow& row : rows.anchors) {
-      const auto deformable = static_cast<int32_t>(&deformableOfNode(row.node[0]) - deformables.data());
+      const auto deformable = static_cast<int32_t>(deformableIndexOfNode(row.node[0]));
       if (deformables[deformable].rowSolver == RowSolverKind::Iterative || !bullet.isDynamic(row.body)) continue;
       int32_t& other = firstDeformableOnBody[row.body];
       if (other < 0)
@@ -339,6 +339,9 @@ struct World::Impl final : bullet::SolverHooks {
       if (row.body >= 0 && row.lambdaNormal > 0) manage(row.body, row.node[0]);
   }
 
+  size_t deformableIndexOfNode(int32_t node) const {
+    return static_cast<size_t>(&deformableOfNode(node) - deformables.data());
+  }
   const DeformableRecord& deformableOfNode(int32_t node) const {
     auto after = std::upper_bound(deformables.begin(), deformables.end(), node,
                                   [](int32_t n, const DeformableRecord& record) { return n < record.firstNode; });
@@ -406,7 +409,7 @@ struct World::Impl final : bullet::SolverHooks {
     for (DirectBlock& block : directBlocks) {
       if (block.projectPositions(rows, nodes)) continue;
       for (const DirectBlock::NodeRange& range : block.ranges())
-        unprojected[&deformableOfNode(range.first) - deformables.data()] = 1;
+        unprojected[deformableIndexOfNode(range.first)] = 1;
     }
   }
 
@@ -417,7 +420,7 @@ struct World::Impl final : bullet::SolverHooks {
     std::vector<char> limited(deformables.size(), 0);
     for (size_t r = 0; r < rows.inextensibility.size(); ++r) {
       const InextensibilityRow& row = rows.inextensibility[r];
-      const auto d = static_cast<size_t>(&deformableOfNode(row.node[0]) - deformables.data());
+      const size_t d = deformableIndexOfNode(row.node[0]);
       if ((row.inDirectBlock && !unprojected[d]) || !(std::isinf(row.lambdaMin) || std::isinf(row.lambdaMax))) continue;
       limitedRows.push_back(static_cast<int32_t>(r));
       limited[d] = 1;
@@ -435,7 +438,7 @@ struct World::Impl final : bullet::SolverHooks {
     std::vector<CollisionRigid> shapes(bullet.rigidBodyCount());
     std::vector<std::vector<char>> touched(deformables.size(), std::vector<char>(shapes.size(), 0));
     for (const ContactRow& row : rows.contacts)
-      if (row.body >= 0) touched[&deformableOfNode(row.node[0]) - deformables.data()][row.body] = 1;
+      if (row.body >= 0) touched[deformableIndexOfNode(row.node[0])][row.body] = 1;
     std::vector<NodeOnShape> touching;
     for (size_t d = 0; d < deformables.size(); ++d) {
       if (!limited[d]) continue;
