@@ -307,5 +307,28 @@ TEST(Viewer, MouseDragOnABodyMovesItAndOnEmptySpaceMovesNothing) {
   EXPECT_LT((untouched - Vec3(0, 0.2, 0)).norm(), 0.003) << output;  // Bullet's resting drift is 1 mm
 }
 
+// Two-way through the mouse: the cloth is grabbed in the middle (the pixel the camera puts its
+// centre on) and dragged 150 pixels along +x on the screen; the box anchored to its far edge
+// follows it, sliding on the floor.
+TEST(Viewer, DraggingTheClothPullsTheBodyItIsAnchoredTo) {
+  const Vec3 eye(0.3, 1.4, 1.2), target(0.3, 0.0, 0.0);
+  const Eigen::Vector3d pixel = Camera::lookAt(eye, target).project({0.31, 0.012, 0.0}, 960, 540);
+  char arguments[160];
+  std::snprintf(arguments, sizeof arguments, " %d %d %d %d %g,%g,%g,%g,%g,%g", int(pixel.x()), int(pixel.y()),
+                int(pixel.x()) + 150, int(pixel.y()), eye.x(), eye.y(), eye.z(), target.x(), target.y(), target.z());
+  std::string output;
+  ASSERT_EQ(runCommand(source("tests/viewer_drag.sh") + " " + TANDEM_CLI + " " + source("tests/data/drag_cloth.json") +
+                           arguments,
+                       output),
+            0)
+      << output;
+  const std::regex line(R"(rigid 'box' at \(([-0-9.]+), ([-0-9.]+), ([-0-9.]+)\) m)");
+  std::smatch match;
+  ASSERT_TRUE(std::regex_search(output, match, line)) << output;
+  std::printf("after the drag: %s\n", match.str(0).c_str());
+  EXPECT_GT(std::stod(match[1]) - (-0.05), 0.1) << output;  // pulled along +x by the cloth
+  EXPECT_NEAR(std::stod(match[2]), 0.1, 0.01);                // still on the floor
+}
+
 }  // namespace
 }  // namespace tandem

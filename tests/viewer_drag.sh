@@ -2,14 +2,14 @@
 # Scripted mouse input to `tandem view` under Xvfb: presses the left button at pixel (X0, Y0),
 # moves to (X1, Y1) in small steps, releases, and lets the viewer run out its wall-clock time.
 # It prints the viewer's output (the dynamic bodies' final positions) for the caller to check.
-# Usage: viewer_drag.sh TANDEM SCENE X0 Y0 X1 Y1
+# Usage: viewer_drag.sh TANDEM SCENE X0 Y0 X1 Y1 [CAMERA]   (CAMERA: ex,ey,ez,tx,ty,tz)
 set -euo pipefail
-tandem=$1 scene=$2 x0=$3 y0=$4 x1=$5 y1=$6
+tandem=$1 scene=$2 x0=$3 y0=$4 x1=$5 y1=$6 camera=${7:-0,1.2,3,0,0.2,0}
 script=$(mktemp)
 trap 'rm -f "$script"' EXIT
 cat > "$script" <<INNER
 set -euo pipefail
-"$tandem" view "$scene" --width 960 --height 540 --camera 0,1.2,3,0,0.2,0 --max-seconds 6 &
+"$tandem" view "$scene" --width 960 --height 540 --camera $camera --max-seconds 6 &
 viewer=\$!
 window=\$(xdotool search --sync --name Tandem | head -1)
 sleep 1
