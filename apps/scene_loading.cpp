@@ -3,6 +3,7 @@
 #include <tandem/scene_file.h>
 #include <tandem/scenes.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 
@@ -53,6 +54,15 @@ int nodeCount(const World& world) {
   for (int d = 0; d < world.deformableCount(); ++d)
     nodes += static_cast<int>(world.nodePositions(DeformableId{d}).size());
   return nodes;
+}
+
+std::vector<std::filesystem::path> shippedSceneFiles() {
+  std::vector<std::filesystem::path> files;
+  std::error_code error;
+  for (const auto& entry : std::filesystem::directory_iterator(TANDEM_SCENE_DIR, error))
+    if (entry.path().extension() == ".json") files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  return files;
 }
 
 }  // namespace tandem::cli

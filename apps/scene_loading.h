@@ -4,8 +4,10 @@
 
 #include <tandem/world.h>
 
+#include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace tandem::cli {
 
@@ -25,5 +27,8 @@ std::optional<SceneInfo> buildInto(World& world, const std::string& scene);
 bool overrideIterations(World& world, int iterations);
 
 int nodeCount(const World& world);
+
+// The scene files shipped in the source tree's scenes/, sorted by name.
+std::vector<std::filesystem::path> shippedSceneFiles();
 
 }  // namespace tandem::cli

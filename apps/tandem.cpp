@@ -169,11 +169,7 @@ void list() {
   std::printf("Built-in scenes (tandem run NAME):\n");
   for (const BuiltinScene& scene : tandem::builtinScenes())
     std::printf("  %-18s %s\n", std::string(scene.name).c_str(), std::string(scene.description).c_str());
-  std::vector<std::filesystem::path> files;
-  std::error_code error;
-  for (const auto& entry : std::filesystem::directory_iterator(TANDEM_SCENE_DIR, error))
-    if (entry.path().extension() == ".json") files.push_back(entry.path());
-  std::sort(files.begin(), files.end());
+  const std::vector<std::filesystem::path> files = tandem::cli::shippedSceneFiles();
   if (files.empty()) return;
   std::printf("Scene files in %s (tandem run FILE):\n", TANDEM_SCENE_DIR);
   for (const auto& file : files) {

@@ -38,12 +38,7 @@ using Clock = std::chrono::steady_clock;
 std::vector<std::string> availableScenes() {
   std::vector<std::string> scenes;
   for (const BuiltinScene& scene : builtinScenes()) scenes.emplace_back(scene.name);
-  std::vector<std::string> files;
-  std::error_code error;
-  for (const auto& entry : std::filesystem::directory_iterator(TANDEM_SCENE_DIR, error))
-    if (entry.path().extension() == ".json") files.push_back(entry.path().string());
-  std::sort(files.begin(), files.end());
-  scenes.insert(scenes.end(), files.begin(), files.end());
+  for (const std::filesystem::path& file : shippedSceneFiles()) scenes.push_back(file.string());
   return scenes;
 }
 

@@ -341,26 +341,15 @@ Status World::setFixedPointTarget(FixedPointId id, const Vec3& target) {
 Result<AnchorId> World::addAnchor(const AnchorDesc& desc) {
   Impl& w = *m_impl;
   if (!w.validRigid(desc.body)) return Error{"anchor: no rigid body with index " + std::to_string(desc.body.index)};
-  if (desc.nodeCount < 1 || desc.nodeCount > 4)
-    return Error{"anchor: node count must be 1 to 4, got " + std::to_string(desc.nodeCount)};
   if (!isPositive(desc.maxForce)) return Error{"anchor: max force must be positive, got " + formatNumber(desc.maxForce)};
+  Result<Impl::BarycentricPoint> point =
+      w.barycentricPoint(desc.deformable, desc.nodes, desc.weights, desc.nodeCount, "anchor");
+  if (!point) return Error{point.message()};
   AnchorRow row;
   row.body = desc.body.index;
   row.maxForce = desc.maxForce;
-  double weightSum = 0.0;
-  for (int k = 0; k < desc.nodeCount; ++k) {
-    Result<int32_t> n = w.globalNode(desc.deformable, desc.nodes[k], "anchor");
-    if (!n) return Error{n.message()};
-    if (!std::isfinite(desc.weights[k])) return Error{"anchor: weights must be finite"};
-    row.node[k] = *n;
-    row.weight[k] = desc.weights[k];
-    weightSum += desc.weights[k];
-  }
-  if (std::abs(weightSum - 1.0) > 1e-6) return Error{"anchor: weights must sum to 1, got " + formatNumber(weightSum)};
-  for (int k = desc.nodeCount; k < 4; ++k) {
-    row.node[k] = row.node[0];
-    row.weight[k] = 0.0;
-  }
+  row.node = point->node;
+  row.weight = point->weight;
   const Vec3 com = w.bullet.position(row.body);
   const Quat orientation = w.bullet.orientation(row.body);
   if (desc.localPoint) {

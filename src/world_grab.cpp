@@ -30,20 +30,14 @@ Result<GrabId> World::addGrab(const GrabDesc& desc) {
     row.localPoint = w.bullet.orientation(row.body).conjugate() * (desc.point - w.bullet.position(row.body));
     w.bullet.wake(row.body);
   } else {
-    if (desc.nodeCount < 1 || desc.nodeCount > 4)
-      return Error{"grab: nodeCount must be 1 to 4, got " + std::to_string(desc.nodeCount)};
-    double sum = 0.0;
-    for (int k = 0; k < desc.nodeCount; ++k) {
-      Result<int32_t> node = w.globalNode(*desc.deformable, desc.nodes[k], "grab");
-      if (!node) return Error{node.message()};
+    Result<Impl::BarycentricPoint> point =
+        w.barycentricPoint(*desc.deformable, desc.nodes, desc.weights, desc.nodeCount, "grab");
+    if (!point) return Error{point.message()};
+    for (int k = 0; k < desc.nodeCount; ++k)  // a grab is on its face, not beyond it
       if (!(desc.weights[k] >= 0 && desc.weights[k] <= 1))
         return Error{"grab: weight " + std::to_string(k) + " must be in [0, 1], got " + formatNumber(desc.weights[k])};
-      row.node[k] = *node;
-      row.weight[k] = desc.weights[k];
-      sum += desc.weights[k];
-    }
-    if (std::abs(sum - 1.0) > 1e-6) return Error{"grab: weights must sum to 1, got " + formatNumber(sum)};
-    for (int k = desc.nodeCount; k < 4; ++k) row.node[k] = row.node[0];
+    row.node = point->node;
+    row.weight = point->weight;
     const DeformableRecord& body = w.deformables[desc.deformable->index];
     for (int32_t n = body.firstNode; n < body.firstNode + body.nodeCount; ++n)
       if (w.nodes.inverseMass[n] > 0) row.springMass += 1.0 / w.nodes.inverseMass[n];

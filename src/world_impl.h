@@ -443,15 +443,15 @@ struct World::Impl final : bullet::SolverHooks {
     for (size_t d = 0; d < deformables.size(); ++d) {
       if (!limited[d]) continue;
       const DeformableRecord& body = deformables[d];
+      // Only nodes near a shape: the passes undo one step's stretch, a few edges' worth.
+      double longestEdge = 0.0;
+      for (const auto& e : body.restMesh.edges)
+        longestEdge = std::max(longestEdge, (body.restMesh.positions[e[1]] - body.restMesh.positions[e[0]]).norm());
+      const double reach = body.collision.thickness + 5 * longestEdge;
       for (size_t b = 0; b < shapes.size(); ++b) {
         if (!touched[d][b]) continue;
         shapes[b] = {rigidShapes[b].get(), bullet.position(int(b)), bullet.orientation(int(b)), Vec3::Zero(),
                      Vec3::Zero(), 0.0, 0.0};
-        // Only nodes near the shape: the passes undo one step's stretch, a few edges' worth.
-        double longestEdge = 0.0;
-        for (const auto& e : body.restMesh.edges)
-          longestEdge = std::max(longestEdge, (body.restMesh.positions[e[1]] - body.restMesh.positions[e[0]]).norm());
-        const double reach = body.collision.thickness + 5 * longestEdge;
         for (int32_t n = body.firstNode; n < body.firstNode + body.nodeCount; ++n) {
           const Vec3 local = shapes[b].orientation.conjugate() * (nodes.position[n] - shapes[b].position);
           if (geometry::distanceToShape(*shapes[b].shape, local, reach).distance < reach)
@@ -490,6 +490,33 @@ struct World::Impl final : bullet::SolverHooks {
   bool validDeformable(DeformableId id) const {
     return id.index >= 0 && id.index < static_cast<int32_t>(deformables.size());
   }
+  // A point of a deformable with weights on up to four of its nodes, checked (the count, each
+  // node in range, finite weights summing to 1) and in global indices; unused entries repeat
+  // the first node with weight 0.
+  struct BarycentricPoint {
+    std::array<int32_t, 4> node{};
+    std::array<double, 4> weight{};
+  };
+  Result<BarycentricPoint> barycentricPoint(DeformableId body, const std::array<int32_t, 4>& localNodes,
+                                            const std::array<double, 4>& weights, int count,
+                                            const char* who) const {
+    if (count < 1 || count > 4)
+      return Error{std::string(who) + ": node count must be 1 to 4, got " + std::to_string(count)};
+    BarycentricPoint point;
+    double sum = 0.0;
+    for (int k = 0; k < count; ++k) {
+      Result<int32_t> node = globalNode(body, localNodes[k], who);
+      if (!node) return Error{node.message()};
+      if (!std::isfinite(weights[k])) return Error{std::string(who) + ": weights must be finite"};
+      point.node[k] = *node;
+      point.weight[k] = weights[k];
+      sum += weights[k];
+    }
+    if (std::abs(sum - 1.0) > 1e-6) return Error{std::string(who) + ": weights must sum to 1, got " + formatNumber(sum)};
+    for (int k = count; k < 4; ++k) point.node[k] = point.node[0];
+    return point;
+  }
+
   Result<int32_t> globalNode(DeformableId body, int32_t node, const char* who) const {
     if (!validDeformable(body)) return Error{std::string(who) + ": no deformable body with index " +
                                              std::to_string(body.index)};

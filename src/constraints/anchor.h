@@ -32,12 +32,6 @@
 
 namespace tandem {
 
-inline Mat3 crossMatrix(const Vec3& a) {
-  Mat3 m;
-  m << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
-  return m;
-}
-
 struct AnchorRow {
   // Definition
   std::array<int32_t, 4> node{};
@@ -53,11 +47,7 @@ struct AnchorRow {
   double maxImpulse = 0.0;
   Vec3 lambda = Vec3::Zero();
 
-  Vec3 deformablePoint(std::span<const Vec3> x) const {
-    Vec3 p = Vec3::Zero();
-    for (int k = 0; k < 4; ++k) p += weight[k] * x[node[k]];
-    return p;
-  }
+  Vec3 deformablePoint(std::span<const Vec3> x) const { return barycentricSum(node, weight, x); }
   Vec3 deformableVelocity(std::span<const Vec3> v) const { return deformablePoint(v); }
 };
 
@@ -71,8 +61,7 @@ inline void prepareAnchor(AnchorRow& row, const NodeArrays& nodes, const RigidSo
   row.offset = body.orientation * row.localPoint;
   double nodeInverseMass = 0.0;
   for (int k = 0; k < 4; ++k) nodeInverseMass += row.weight[k] * row.weight[k] * nodes.inverseMass[row.node[k]];
-  const Mat3 cross = crossMatrix(row.offset);
-  const Mat3 k = (nodeInverseMass + body.inverseMass) * Mat3::Identity() - cross * body.inverseInertia * cross;
+  const Mat3 k = nodeInverseMass * Mat3::Identity() + body.pointCompliance(row.offset);
   row.effectiveMass.setZero();
   if (k.determinant() > 1e-12 * std::pow(k.norm(), 3)) row.effectiveMass = k.inverse();
   row.maxImpulse = row.maxForce * timeStep;

@@ -34,7 +34,6 @@
 
 #include <tandem/world.h>  // FrictionModel
 
-#include "constraints/anchor.h"  // crossMatrix
 #include "solver/solver_state.h"
 
 #include <Eigen/LU>
@@ -88,11 +87,7 @@ inline Mat3 contactPointCompliance(const ContactRow& row, std::span<const double
   double nodes = 0.0;
   for (int k = 0; k < 4; ++k) nodes += row.coefficient[k] * row.coefficient[k] * inverseMass[row.node[k]];
   Mat3 k = nodes * Mat3::Identity();
-  if (row.body >= 0) {
-    const RigidSolverState& body = rigid[row.body];
-    const Mat3 cross = crossMatrix(row.offset);
-    k += body.inverseMass * Mat3::Identity() - cross * body.inverseInertia * cross;
-  }
+  if (row.body >= 0) k += rigid[row.body].pointCompliance(row.offset);
   return k;
 }
 

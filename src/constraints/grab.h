@@ -26,7 +26,7 @@
 // point; on a rigid body it acts at a: v ← v + m⁻¹ Δλ, ω ← ω + I⁻¹ (a × Δλ).
 #pragma once
 
-#include "constraints/anchor.h"  // crossMatrix, clampToBall
+#include "constraints/fixed_point.h"  // clampToBall
 #include "solver/solver_state.h"
 
 #include <Eigen/LU>
@@ -63,9 +63,7 @@ struct GrabRow {
 
   Vec3 point(std::span<const Vec3> positions, const RigidSolverState* rigid) const {
     if (rigid) return rigid->centerOfMass + rigid->orientation * localPoint;
-    Vec3 p = Vec3::Zero();
-    for (int k = 0; k < 4; ++k) p += weight[k] * positions[node[k]];
-    return p;
+    return barycentricSum(node, weight, positions);
   }
 };
 
@@ -75,8 +73,7 @@ inline void prepareGrab(GrabRow& row, const NodeArrays& nodes, std::span<const R
   if (row.onRigid()) {
     const RigidSolverState& body = rigid[row.body];
     row.offset = body.orientation * row.localPoint;
-    const Mat3 cross = crossMatrix(row.offset);
-    k = body.inverseMass * Mat3::Identity() - cross * body.inverseInertia * cross;
+    k = body.pointCompliance(row.offset);
   } else {
     double inverseMass = 0.0;
     for (int j = 0; j < 4; ++j) inverseMass += row.weight[j] * row.weight[j] * nodes.inverseMass[row.node[j]];
@@ -96,9 +93,7 @@ inline void prepareGrab(GrabRow& row, const NodeArrays& nodes, std::span<const R
 
 inline Vec3 grabVelocity(const GrabRow& row, const SolverContext& ctx) {
   if (row.onRigid()) return ctx.rigid[row.body].velocityAt(row.offset);
-  Vec3 v = Vec3::Zero();
-  for (int k = 0; k < 4; ++k) v += row.weight[k] * ctx.velocity[row.node[k]];
-  return v;
+  return barycentricSum(row.node, row.weight, ctx.velocity);
 }
 
 inline void applyGrabImpulse(const GrabRow& row, const Vec3& impulse, SolverContext& ctx) {

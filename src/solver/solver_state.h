@@ -7,10 +7,28 @@
 #include <tandem/types.h>
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
 #include <span>
 #include <vector>
 
 namespace tandem {
+
+// [a]ₓ: the matrix with [a]ₓ b = a × b.
+inline Mat3 crossMatrix(const Vec3& a) {
+  Mat3 m;
+  m << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
+  return m;
+}
+
+// Σ wₖ valuesₖ over a point's up to four nodes (unused entries have weight 0): the point's
+// position or velocity.
+inline Vec3 barycentricSum(const std::array<int32_t, 4>& node, const std::array<double, 4>& weight,
+                           std::span<const Vec3> values) {
+  Vec3 sum = Vec3::Zero();
+  for (int k = 0; k < 4; ++k) sum += weight[k] * values[node[k]];
+  return sum;
+}
 
 struct NodeArrays {
   std::vector<Vec3> position;
@@ -36,6 +54,13 @@ struct RigidSolverState {
   Vec3 angularImpulse = Vec3::Zero();       // about the centre of mass
 
   Vec3 velocityAt(const Vec3& offset) const { return linearVelocity + angularVelocity.cross(offset); }
+
+  // The inverse effective mass of the body's point at `offset` from its centre of mass:
+  // Δv = (m⁻¹ I − [a]ₓ I⁻¹ [a]ₓ) P for an impulse P there.
+  Mat3 pointCompliance(const Vec3& offset) const {
+    const Mat3 cross = crossMatrix(offset);
+    return inverseMass * Mat3::Identity() - cross * inverseInertia * cross;
+  }
 
   void applyImpulse(const Vec3& p, const Vec3& offset) {
     const Vec3 angular = offset.cross(p);
