@@ -79,13 +79,11 @@ std::vector<ContactReport> World::contacts() const {
   for (const ContactRow& row : w.rows.contacts) {
     ContactReport report;
     const DeformableRecord& body = w.deformableOfNode(row.node[0]);
-    report.deformable = DeformableId{static_cast<int32_t>(&body - w.deformables.data())};
-    if (row.body >= 0) {
+    report.deformable = DeformableId{static_cast<int32_t>(w.deformableIndexOfNode(row.node[0]))};
+    if (row.body >= 0)
       report.rigid = RigidBodyId{row.body};
-    } else {
-      const DeformableRecord& other = w.deformableOfNode(row.node[1]);
-      report.other = DeformableId{static_cast<int32_t>(&other - w.deformables.data())};
-    }
+    else
+      report.other = DeformableId{static_cast<int32_t>(w.deformableIndexOfNode(row.node[1]))};
     for (int k = 0; k < 4; ++k)
       if (row.coefficient[k] > 0) report.point += row.coefficient[k] * w.nodes.position[row.node[k]];
     report.normal = row.normal;
@@ -148,6 +146,7 @@ Status World::step(double h) {
 const StepReport& World::lastReport() const { return m_impl->report; }
 double World::time() const { return m_impl->time; }
 int64_t World::stepCount() const { return m_impl->steps; }
+double World::lastTimeStep() const { return m_impl->timeStep; }
 
 Vec3 World::totalLinearMomentum() const {
   Vec3 momentum = Vec3::Zero();

@@ -91,7 +91,11 @@ TEST(HangingRope, WarmStartingLowersTheResidualAfterTwoIterations) {
 TEST(HangingRope, ReportsStagesRowsAndConvergence) {
   World world;
   ASSERT_TRUE(findBuiltinScene("hanging_rope")->build(world).ok());
+  EXPECT_EQ(world.lastTimeStep(), 0.0);
   ASSERT_TRUE(world.step(kStep).ok());
+  EXPECT_EQ(world.lastTimeStep(), kStep);
+  EXPECT_FALSE(world.step(-1.0).ok());
+  EXPECT_EQ(world.lastTimeStep(), kStep);  // a refused step changes nothing
   const StepReport& report = world.lastReport();
   EXPECT_EQ(report.rows(RowType::FixedPoint), 3);
   EXPECT_EQ(report.rows(RowType::Anchor), 3);

@@ -353,6 +353,7 @@ class World {
   const StepReport& lastReport() const;
   double time() const;  // simulated seconds so far
   int64_t stepCount() const;
+  double lastTimeStep() const;  // h of the last step (0 before the first): impulses / h are forces
 
   // Momentum of every dynamic thing in the world (deformable nodes with finite mass and dynamic
   // rigid bodies), for checking conservation.

@@ -400,12 +400,12 @@ void Renderer::draw(const World& world, const Camera& camera, int width, int hei
   }
 
   if (options.contacts) {
-    const double h = world.stepCount() > 0 ? world.time() / double(world.stepCount()) : 1.0;
+    const double h = world.lastTimeStep();
     for (const ContactReport& contact : world.contacts()) {
       const double size = 0.01;
       for (int axis = 0; axis < 3; ++axis)
         r.line(contact.point - size * Vec3::Unit(axis), contact.point + size * Vec3::Unit(axis), {1.0f, 0.9f, 0.2f});
-      const Vec3 force = (contact.normalImpulse * contact.normal + contact.frictionImpulse) / h;
+      const Vec3 force = h > 0 ? Vec3((contact.normalImpulse * contact.normal + contact.frictionImpulse) / h) : Vec3::Zero();
       if (force.norm() > 1e-9) r.line(contact.point, contact.point + options.forceScale * force, {0.3f, 1.0f, 0.4f});
     }
   }
