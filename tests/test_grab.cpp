@@ -179,6 +179,24 @@ TEST(Grab, BadGrabsAreRefusedWithAReason) {
   GrabDesc noBody;
   noBody.deformable = DeformableId{3};
   EXPECT_NE(message(noBody).find("no deformable body"), std::string::npos);
+  DeformableDesc rope;
+  rope.name = "rope";
+  rope.mesh = *makeRope({0, 1, 0}, {1, 1, 0}, 4, 0.1);
+  GrabDesc onRope;
+  onRope.deformable = *world.addDeformable(rope);
+  onRope.nodes = {0, 1, -1, -1};
+  onRope.nodeCount = 5;
+  EXPECT_NE(message(onRope).find("grab: node count must be 1 to 4, got 5"), std::string::npos);
+  onRope.nodeCount = 2;
+  onRope.weights = {0.7, 0.7, 0, 0};
+  EXPECT_NE(message(onRope).find("grab: weights must sum to 1, got 1.4"), std::string::npos);
+  onRope.weights = {NAN, 1, 0, 0};
+  EXPECT_NE(message(onRope).find("grab: weights must be finite"), std::string::npos);
+  onRope.weights = {-0.5, 1.5, 0, 0};  // sums to 1, but off the edge
+  EXPECT_NE(message(onRope).find("grab: weight 0 must be in [0, 1], got -0.5"), std::string::npos);
+  onRope.nodes = {0, 7, -1, -1};
+  onRope.weights = {0.5, 0.5, 0, 0};
+  EXPECT_NE(message(onRope).find("node 7 is out of range"), std::string::npos);
   const GrabId grab = *world.addGrab(grabRigid(box, Vec3::Zero(), Vec3::Zero()));
   ASSERT_TRUE(world.removeGrab(grab).ok());
   EXPECT_NE(world.removeGrab(grab).message().find("no active grab"), std::string::npos);
