@@ -64,6 +64,7 @@ void printReport(const StepReport& report, const std::vector<double>& stageTotal
     std::printf("  %-20s %8d / %d\n", std::string(tandem::kRowTypeNames[t]).c_str(), report.rowCounts[t], maxRows[t]);
   std::printf("  %-20s %8d\n", "total", report.totalRows());
   std::printf("Bullet: %d contact manifolds, %d joints\n", report.bulletContactManifolds, report.bulletJoints);
+  std::printf("Impact zones, last step: %d, holding %d nodes\n", report.impactZones, report.impactZoneNodes);
   std::printf("RMS of delta-lambda per iteration, last step (N s):");
   for (double rms : report.rmsDeltaLambda) std::printf(" %.3g", rms);
   std::printf("\n");

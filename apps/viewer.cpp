@@ -339,6 +339,7 @@ class Viewer {
     for (size_t t = 0; t < report.rowCounts.size(); ++t)
       if (report.rowCounts[t]) ImGui::Text("  %-16s %d", std::string(kRowTypeNames[t]).c_str(), report.rowCounts[t]);
     ImGui::Text("Bullet: %d manifolds, %d joints", report.bulletContactManifolds, report.bulletJoints);
+    ImGui::Text("impact zones: %d (%d nodes)", report.impactZones, report.impactZoneNodes);
     std::vector<float> rms(report.rmsDeltaLambda.begin(), report.rmsDeltaLambda.end());
     ImGui::PlotLines("RMS dlambda", rms.data(), int(rms.size()), 0, "per iteration (N s)", 0.0f, FLT_MAX,
                      ImVec2(0, 60));

@@ -129,9 +129,10 @@ Status World::step(double h) {
   w.rememberContacts();
   w.integrateNodes(h);                  // 7. symplectic Euler for nodes; Bullet for rigid bodies;
   w.bullet.integrate(h);                //    then the direct blocks' rows projected back by position,
-                                        //    and the edges no block projected limited to 1 % stretch
-  w.projectDirectBlocks();
+                                        //    and the edges no block projected limited to 1 % stretch;
+  w.projectDirectBlocks();              //    last, impact zones where surfaces would have crossed
   w.limitStrainOfUnprojectedRows();
+  w.separateCrossingSurfaces(h);
   timed(Stage::Integrate);
 
   report.bulletContactManifolds = w.bullet.manifoldCount();  // 8. report

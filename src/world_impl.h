@@ -6,6 +6,7 @@
 
 #include "bullet/bullet_world.h"
 #include "collision/contact_detection.h"
+#include "collision/impact_zones.h"
 #include "format.h"
 #include "models/implicit_solve.h"
 #include "models/mass_spring.h"
@@ -74,6 +75,7 @@ struct World::Impl final : bullet::SolverHooks {
   std::vector<DirectBlock> directBlocks;
   bool directBlocksStale = true;  // rows were added since the blocks were built
   std::vector<char> unprojected;  // per deformable: in a block that could not project this step
+  std::vector<Vec3> stepStartPositions;  // node positions before this step moved them
   struct ContactImpulse {
     double normal;
     Vec3 friction;
@@ -188,7 +190,7 @@ struct World::Impl final : bullet::SolverHooks {
   }
 
   // ---- Stage 3: deformable contacts ---------------------------------------------------------
-  void detectDeformableContacts(double h) {
+  std::vector<CollisionSurface> collisionSurfaces() const {
     std::vector<CollisionSurface> surfaces;
     for (const DeformableRecord& body : deformables) {
       if (!body.collision.enabled) continue;
@@ -196,6 +198,11 @@ struct World::Impl final : bullet::SolverHooks {
                           body.surfaceEdges, body.restMesh.positions, body.collision.thickness,
                           body.collision.friction, body.collision.selfCollision});
     }
+    return surfaces;
+  }
+
+  void detectDeformableContacts(double h) {
+    const std::vector<CollisionSurface> surfaces = collisionSurfaces();
     std::vector<CollisionRigid> shapes(bullet.rigidBodyCount());
     for (int b = 0; b < bullet.rigidBodyCount(); ++b)
       shapes[b] = {rigidShapes[b].get(),        bullet.position(b),        bullet.orientation(b),
@@ -378,6 +385,7 @@ struct World::Impl final : bullet::SolverHooks {
 
   // ---- Stage 7: integrate ----------------------------------------------------------------
   void integrateNodes(double h) {
+    stepStartPositions = nodes.position;
     for (size_t i = 0; i < nodes.size(); ++i) nodes.position[i] += h * nodes.velocity[i];
     pushOutOfContacts();
     for (FixedPointRow& row : rows.fixedPoints) row.previousTarget = row.target;
@@ -463,6 +471,14 @@ struct World::Impl final : bullet::SolverHooks {
     std::vector<Vec3> pushed(nodes.size(), Vec3::Zero());
     limitStrain(rows.inextensibility, limitedRows, touching, nodes.position, weight, pushed);
     for (size_t n = 0; n < nodes.size(); ++n) nodes.velocity[n] += (nodes.position[n] - before[n] - pushed[n]) / timeStep;
+  }
+
+  // No surface may have passed through another or itself on its way from the step's start
+  // (collision/impact_zones.h).
+  void separateCrossingSurfaces(double h) {
+    const ImpactZoneStats stats = separateByImpactZones(collisionSurfaces(), stepStartPositions, nodes, h);
+    report.impactZones = stats.zones;
+    report.impactZoneNodes = stats.zoneNodes;
   }
 
   // A non-finite or absurdly fast state means the step diverged: say which body, and stop.

@@ -22,6 +22,9 @@ struct StepReport {
   std::vector<double> rmsDeltaLambda;
   int bulletContactManifolds = 0;
   int bulletJoints = 0;
+  // Groups of nodes moved rigidly at the step's end because their surfaces would have crossed.
+  int impactZones = 0;
+  int impactZoneNodes = 0;
   double totalSeconds = 0.0;
 
   int totalRows() const {

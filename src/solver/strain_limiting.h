@@ -42,9 +42,7 @@ namespace tandem {
 
 inline constexpr double kStrainTolerance = 0.01;  // ε: 1 % of the rest length
 inline constexpr int kStrainPasses = 40;        // at most
-inline constexpr double kStrainConverged = 1e-3;
-inline constexpr double kStrainOverRelaxation = 1.8;
-inline constexpr double kStrainPressedWeight = 0.1;  // done when no edge was corrected by more than 0.1 %
+inline constexpr double kStrainConverged = 1e-3;  // done when no edge was corrected by more than 0.1 %
 
 // A node that touched a rigid shape in this step, to be kept out of it.
 struct NodeOnShape {
