@@ -198,11 +198,10 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
   m_bias.resize(rowCount);
   m_compliance.resize(rowCount);
   m_active.assign(rowCount, false);
-  m_rowEntries.assign(rowCount, {0, 0});
   m_released.assign(rowCount, false);
+  m_releasedRows.clear();
   for (int32_t r = 0; r < rowCount; ++r) {
     const int32_t kktRow = m_dofCount + r;
-    m_rowEntries[r].first = entries.size();
     double inverseMassSum = 0.0;
     auto add = [&](int32_t dof, const Vec3& j, double inverseMass) {
       if (dof < 0) return;
@@ -263,7 +262,6 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
     m_active[r] = inverseMassSum > 0.0;
     m_compliance[r] = m_active[r] ? kRelativeCompliance * inverseMassSum : 1.0;
     entries.emplace_back(kktRow, kktRow, -m_compliance[r]);
-    m_rowEntries[r].second = entries.size();  // the diagonal is the last
   }
 
   m_jacobianT.resize(m_dofCount, rowCount);
@@ -278,14 +276,13 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
     m_bodyInverseInertia[b] = rigid[m_bodies[b]].inverseInertia;
   }
 
-  m_entries = std::move(entries);
-  factorise();
+  factorise(entries);
 }
 
-void DirectBlock::factorise() {
+void DirectBlock::factorise(const std::vector<Eigen::Triplet<double>>& entries) {
   const Eigen::Index size = m_dofCount + scalarRowCount();
   SparseMatrix kkt(size, size);
-  kkt.setFromTriplets(m_entries.begin(), m_entries.end());
+  kkt.setFromTriplets(entries.begin(), entries.end());
   // The ordering and symbolic factorisation are redone only when the sparsity pattern changes
   // (pinned nodes, movable bodies, the contacts in the block).
   kkt.makeCompressed();
@@ -300,13 +297,32 @@ void DirectBlock::factorise() {
   m_factorOk = m_factor->info() == Eigen::Success;
 }
 
-// A released row keeps its place in the pattern, with zero entries and a unit diagonal.
+// A released row's equation is dropped without refactorising: the system solved is the
+// factorised one, A z = b + Σ_R μ_r e_r, with the multipliers μ chosen so that z_r = 0 on the
+// released rows R (its λ then stays as prescribed, its column carries nothing). With
+// C = A⁻¹ E_R (one solve per released row, kept), z = A⁻¹ b + C μ and (C_RR) μ = −(A⁻¹ b)_R:
+// a |R|×|R| dense solve per solve instead of a refactorisation per release.
 void DirectBlock::release(int32_t row) {
   m_released[row] = true;
-  for (size_t e = m_rowEntries[row].first; e + 1 < m_rowEntries[row].second; ++e)
-    m_entries[e] = Eigen::Triplet<double>(m_entries[e].row(), m_entries[e].col(), 0.0);
-  const size_t diagonal = m_rowEntries[row].second - 1;
-  m_entries[diagonal] = Eigen::Triplet<double>(m_entries[diagonal].row(), m_entries[diagonal].col(), -1.0);
+  const Eigen::Index kktRow = m_dofCount + row;
+  Eigen::VectorXd unit = Eigen::VectorXd::Zero(m_dofCount + scalarRowCount());
+  unit[kktRow] = 1.0;
+  m_releasedRows.push_back(kktRow);
+  const Eigen::Index count = static_cast<Eigen::Index>(m_releasedRows.size());
+  m_releasedColumns.conservativeResize(unit.size(), count);
+  m_releasedColumns.col(count - 1) = m_factor->solve(unit);
+  Eigen::MatrixXd coupling(count, count);
+  for (Eigen::Index i = 0; i < count; ++i) coupling.row(i) = m_releasedColumns.row(m_releasedRows[i]);
+  m_releasedCoupling.compute(coupling);
+}
+
+Eigen::VectorXd DirectBlock::solveKkt(const Eigen::VectorXd& rhs) const {
+  Eigen::VectorXd z = m_factor->solve(rhs);
+  if (m_releasedRows.empty()) return z;
+  Eigen::VectorXd atReleased(static_cast<Eigen::Index>(m_releasedRows.size()));
+  for (size_t i = 0; i < m_releasedRows.size(); ++i) atReleased[static_cast<Eigen::Index>(i)] = -z[m_releasedRows[i]];
+  z += m_releasedColumns * m_releasedCoupling.solve(atReleased);
+  return z;
 }
 
 bool DirectBlock::projectPositions(const ConstraintRows& rows, NodeArrays& nodes) {
@@ -329,7 +345,7 @@ bool DirectBlock::projectPositions(const ConstraintRows& rows, NodeArrays& nodes
             -inextensibilityError(nodes.position[row.node[0]], nodes.position[row.node[1]], row.restLength);
     }
   }
-  m_solution = m_factor->solve(m_rhs);
+  m_solution = solveKkt(m_rhs);
   // Near a singular configuration (a taut flat sheet pinned at its corners) the linearised
   // rows are nearly redundant and a small error asks for a large step: no node moves further
   // than twice the largest error it is correcting.
@@ -389,13 +405,13 @@ void DirectBlock::solve(ConstraintRows& rows, SolverContext& ctx, SweepStats& st
     m_rhs.head(m_dofCount) = m_jacobianT * prescribed;
     for (int32_t r = 0; r < rowCount; ++r)
       m_rhs[m_dofCount + r] = m_active[r] && !m_released[r] ? -(rowVelocity(rows, m_rows[r], ctx) + m_bias[r]) : 0.0;
-    m_solution = m_factor->solve(m_rhs);
+    m_solution = solveKkt(m_rhs);
     // One step of iterative refinement: the first solve leaves J(v + Δv) + b = E y, a residual
     // of the compliance alone; solving for it again removes all but O(ε²) of it.
     m_rhs.head(m_dofCount).setZero();
     for (int32_t r = 0; r < rowCount; ++r)
       m_rhs[m_dofCount + r] = m_active[r] && !m_released[r] ? -m_compliance[r] * m_solution[m_dofCount + r] : 0.0;
-    m_solution += m_factor->solve(m_rhs);
+    m_solution += solveKkt(m_rhs);
 
     bool released = false;
     for (size_t r = m_persistentRows; r < m_rows.size(); ++r) {
@@ -406,7 +422,6 @@ void DirectBlock::solve(ConstraintRows& rows, SolverContext& ctx, SweepStats& st
       }
     }
     if (!released || round == kMaxReleaseRounds) break;
-    factorise();
   }
   // A released contact goes back to the PGS sweep, which may still push with it.
   for (size_t r = m_persistentRows; r < m_rows.size(); ++r)

@@ -48,6 +48,7 @@
 
 #include "solver/constraint_rows.h"
 
+#include <Eigen/Dense>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 
@@ -128,14 +129,16 @@ class DirectBlock {
   Eigen::VectorXd m_inverseMass;    // per degree of freedom (linear ones; nodes and bodies)
   std::vector<Mat3> m_bodyInverseInertia;
   SparseMatrix m_stiffness;         // h² (K_g + K_e): dofs × dofs
-  std::vector<Eigen::Triplet<double>> m_entries;  // the KKT matrix, kept to release contacts
-  std::vector<std::pair<size_t, size_t>> m_rowEntries;  // each row's entries; its diagonal last
   std::vector<bool> m_released;  // contacts let go this step
+  std::vector<Eigen::Index> m_releasedRows;  // their KKT rows, in the order released
+  Eigen::MatrixXd m_releasedColumns;         // A⁻¹ e_r for each of them
+  Eigen::PartialPivLU<Eigen::MatrixXd> m_releasedCoupling;  // of those columns' released rows
 
   int32_t localNode(int32_t node) const;  // index among the block's nodes, or −1
   int32_t globalNode(int32_t local) const;
-  void factorise();
+  void factorise(const std::vector<Eigen::Triplet<double>>& entries);
   void release(int32_t row);
+  Eigen::VectorXd solveKkt(const Eigen::VectorXd& rhs) const;  // with the released rows' equations dropped
   double rowVelocity(const ConstraintRows& rows, const BlockRowRef& ref, const SolverContext& ctx) const;
 };
 
