@@ -39,7 +39,8 @@
 // to rounding whatever the solve's own residual.
 //
 // The KKT matrix is symmetric quasi-definite, so a sparse LDLᵀ without pivoting (AMD ordering)
-// factorises it once per step; each sweep is one pair of triangular solves. Rows with bounds
+// factorises it once per step; each sweep is one pair of triangular solves (plus a small dense
+// solve per contact let go, which drops its equation without refactorising). Rows with bounds
 // (finite max force, one-sided modes) stay in the PGS sweep, which runs before the block in
 // every iteration.
 #pragma once
