@@ -12,6 +12,8 @@ namespace {
 constexpr double kRelativeCompliance = 1e-9;
 // Rounds of releasing pulling contacts per solve (each refactorises the block).
 constexpr int kMaxReleaseRounds = 3;
+// Contacts let go by a low-rank correction before the block is refactorised instead.
+constexpr Eigen::Index kLowRankReleases = 32;
 // h² K_g per edge is at most this multiple of its lighter node's mass.
 constexpr double kMaxStiffnessToMass = 100;
 
@@ -198,10 +200,12 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
   m_bias.resize(rowCount);
   m_compliance.resize(rowCount);
   m_active.assign(rowCount, false);
+  m_rowEntries.assign(rowCount, {0, 0});
   m_released.assign(rowCount, false);
   m_releasedRows.clear();
   for (int32_t r = 0; r < rowCount; ++r) {
     const int32_t kktRow = m_dofCount + r;
+    m_rowEntries[r].first = entries.size();
     double inverseMassSum = 0.0;
     auto add = [&](int32_t dof, const Vec3& j, double inverseMass) {
       if (dof < 0) return;
@@ -262,6 +266,7 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
     m_active[r] = inverseMassSum > 0.0;
     m_compliance[r] = m_active[r] ? kRelativeCompliance * inverseMassSum : 1.0;
     entries.emplace_back(kktRow, kktRow, -m_compliance[r]);
+    m_rowEntries[r].second = entries.size();  // the diagonal is the last
   }
 
   m_jacobianT.resize(m_dofCount, rowCount);
@@ -276,13 +281,15 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
     m_bodyInverseInertia[b] = rigid[m_bodies[b]].inverseInertia;
   }
 
-  factorise(entries);
+  m_entries = std::move(entries);
+  factorise();
 }
 
-void DirectBlock::factorise(const std::vector<Eigen::Triplet<double>>& entries) {
+void DirectBlock::factorise() {
   const Eigen::Index size = m_dofCount + scalarRowCount();
   SparseMatrix kkt(size, size);
-  kkt.setFromTriplets(entries.begin(), entries.end());
+  kkt.setFromTriplets(m_entries.begin(), m_entries.end());
+  m_releasedRows.clear();  // in the matrix now
   // The ordering and symbolic factorisation are redone only when the sparsity pattern changes
   // (pinned nodes, movable bodies, the contacts in the block).
   kkt.makeCompressed();
@@ -297,20 +304,34 @@ void DirectBlock::factorise(const std::vector<Eigen::Triplet<double>>& entries) 
   m_factorOk = m_factor->info() == Eigen::Success;
 }
 
-// A released row's equation is dropped without refactorising: the system solved is the
-// factorised one, A z = b + Σ_R μ_r e_r, with the multipliers μ chosen so that z_r = 0 on the
-// released rows R (its λ then stays as prescribed, its column carries nothing). With
-// C = A⁻¹ E_R (one solve per released row, kept), z = A⁻¹ b + C μ and (C_RR) μ = −(A⁻¹ b)_R:
-// a |R|×|R| dense solve per solve instead of a refactorisation per release.
-void DirectBlock::release(int32_t row) {
-  m_released[row] = true;
-  const Eigen::Index kktRow = m_dofCount + row;
-  Eigen::VectorXd unit = Eigen::VectorXd::Zero(m_dofCount + scalarRowCount());
-  unit[kktRow] = 1.0;
-  m_releasedRows.push_back(kktRow);
-  const Eigen::Index count = static_cast<Eigen::Index>(m_releasedRows.size());
-  m_releasedColumns.conservativeResize(unit.size(), count);
-  m_releasedColumns.col(count - 1) = m_factor->solve(unit);
+// A released row's equation is dropped. In the matrix, it keeps its place in the pattern with
+// zero entries and a unit diagonal, for the next factorisation. Until then, the system solved is
+// the factorised one, A z = b + Σ_R μ_r e_r, with the multipliers μ chosen so that z_r = 0 on the
+// released rows R (its λ then stays as prescribed, its column carries nothing): with
+// C = A⁻¹ E_R (one solve per released row, kept), z = A⁻¹ b + C μ and (C_RR) μ = −(A⁻¹ b)_R,
+// a small dense solve per solve instead of a refactorisation per round of releases. Past
+// kLowRankReleases rows the columns would cost more than a factorisation, which is redone.
+void DirectBlock::release(const std::vector<int32_t>& released) {
+  for (int32_t row : released) {
+    m_released[row] = true;
+    for (size_t e = m_rowEntries[row].first; e + 1 < m_rowEntries[row].second; ++e)
+      m_entries[e] = Eigen::Triplet<double>(m_entries[e].row(), m_entries[e].col(), 0.0);
+    const size_t diagonal = m_rowEntries[row].second - 1;
+    m_entries[diagonal] = Eigen::Triplet<double>(m_entries[diagonal].row(), m_entries[diagonal].col(), -1.0);
+  }
+  const auto count = static_cast<Eigen::Index>(m_releasedRows.size() + released.size());
+  if (count > kLowRankReleases) {
+    factorise();
+    return;
+  }
+  const Eigen::Index size = m_dofCount + scalarRowCount();
+  m_releasedColumns.conservativeResize(size, count);
+  for (int32_t row : released) {
+    Eigen::VectorXd unit = Eigen::VectorXd::Zero(size);
+    unit[m_dofCount + row] = 1.0;
+    m_releasedColumns.col(static_cast<Eigen::Index>(m_releasedRows.size())) = m_factor->solve(unit);
+    m_releasedRows.push_back(m_dofCount + row);
+  }
   Eigen::MatrixXd coupling(count, count);
   for (Eigen::Index i = 0; i < count; ++i) coupling.row(i) = m_releasedColumns.row(m_releasedRows[i]);
   m_releasedCoupling.compute(coupling);
@@ -413,15 +434,17 @@ void DirectBlock::solve(ConstraintRows& rows, SolverContext& ctx, SweepStats& st
       m_rhs[m_dofCount + r] = m_active[r] && !m_released[r] ? -m_compliance[r] * m_solution[m_dofCount + r] : 0.0;
     m_solution += solveKkt(m_rhs);
 
-    bool released = false;
+    std::vector<int32_t> released;
     for (size_t r = m_persistentRows; r < m_rows.size(); ++r) {
       const double total = rows.contacts[m_rows[r].index].lambdaNormal - m_solution[m_dofCount + r];
       if (!m_released[r] && total < 0.0) {
-        release(static_cast<int32_t>(r));
-        releasedHere[r] = released = true;
+        released.push_back(static_cast<int32_t>(r));
+        releasedHere[r] = true;
       }
     }
-    if (!released || round == kMaxReleaseRounds) break;
+    if (released.empty()) break;
+    release(released);
+    if (round == kMaxReleaseRounds) break;
   }
   // A released contact goes back to the PGS sweep, which may still push with it.
   for (size_t r = m_persistentRows; r < m_rows.size(); ++r)

@@ -40,9 +40,9 @@
 //
 // The KKT matrix is symmetric quasi-definite, so a sparse LDLᵀ without pivoting (AMD ordering)
 // factorises it once per step; each sweep is one pair of triangular solves (plus a small dense
-// solve per contact let go, which drops its equation without refactorising). Rows with bounds
-// (finite max force, one-sided modes) stay in the PGS sweep, which runs before the block in
-// every iteration.
+// solve for the contacts let go, which drops their equations without refactorising, up to 32
+// of them). Rows with bounds (finite max force, one-sided modes) stay in the PGS sweep, which
+// runs before the block in every iteration.
 #pragma once
 
 #include <tandem/report.h>
@@ -130,15 +130,17 @@ class DirectBlock {
   Eigen::VectorXd m_inverseMass;    // per degree of freedom (linear ones; nodes and bodies)
   std::vector<Mat3> m_bodyInverseInertia;
   SparseMatrix m_stiffness;         // h² (K_g + K_e): dofs × dofs
+  std::vector<Eigen::Triplet<double>> m_entries;  // the KKT matrix, kept to release contacts
+  std::vector<std::pair<size_t, size_t>> m_rowEntries;  // each row's entries; its diagonal last
   std::vector<bool> m_released;  // contacts let go this step
-  std::vector<Eigen::Index> m_releasedRows;  // their KKT rows, in the order released
+  std::vector<Eigen::Index> m_releasedRows;  // KKT rows let go since the last factorisation
   Eigen::MatrixXd m_releasedColumns;         // A⁻¹ e_r for each of them
   Eigen::PartialPivLU<Eigen::MatrixXd> m_releasedCoupling;  // of those columns' released rows
 
   int32_t localNode(int32_t node) const;  // index among the block's nodes, or −1
   int32_t globalNode(int32_t local) const;
-  void factorise(const std::vector<Eigen::Triplet<double>>& entries);
-  void release(int32_t row);
+  void factorise();
+  void release(const std::vector<int32_t>& rows);
   Eigen::VectorXd solveKkt(const Eigen::VectorXd& rhs) const;  // with the released rows' equations dropped
   double rowVelocity(const ConstraintRows& rows, const BlockRowRef& ref, const SolverContext& ctx) const;
 };
