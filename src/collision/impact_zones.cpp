@@ -132,12 +132,12 @@ struct Separator {
     seen.assign(edges.size(), -1);
     for (size_t e = 0; e < edges.size(); ++e) {
       const Feature& first = edges[e];
-      const auto [i0, i1, unusedI] = first.node;
+      const int32_t i0 = first.node[0], i1 = first.node[1];
       edgeGrid.visit(edgeBoxes[e].center(), 0.5 * edgeBoxes[e].sizes().maxCoeff(), [&](int32_t g) {
         if (g <= static_cast<int32_t>(e) || seen[g] == static_cast<int32_t>(e)) return;
         seen[g] = static_cast<int32_t>(e);
         const Feature& second = edges[g];
-        const auto [j0, j1, unusedJ] = second.node;
+        const int32_t j0 = second.node[0], j1 = second.node[1];
         if (!meets[first.surface * count + second.surface] && !meets[second.surface * count + first.surface]) return;
         if (i0 == j0 || i0 == j1 || i1 == j0 || i1 == j1) return;
         if (!edgeBoxes[e].intersects(edgeBoxes[g]) || sameZone({i0, i1, j0, j1})) return;
