@@ -404,6 +404,57 @@ TEST(Contact, ClothsMeetingHeadOnFastDoNotPassAndKeepMomentum) {
   EXPECT_EQ(crossings, 0);
 }
 
+TEST(Contact, JellyDroppedOnJellyRestsOnItWithoutPassingIn) {
+  // A 1 kg FEM jelly dropped 10 cm onto an 8 kg one on the floor (E = 50 kPa both).
+  World world;
+  ASSERT_TRUE(world.addRigidBody(staticBody("floor", RigidShape::plane({0, 1, 0}, 0.0), Vec3::Zero())).ok());
+  auto jelly = [](std::string name, const Vec3& low, const Vec3& high, int cells, double mass) {
+    DeformableDesc desc;
+    desc.name = std::move(name);
+    desc.mesh = *makeTetBox(low, high, cells, cells / 2, cells, mass);
+    desc.paradigm.type = ParadigmType::CorotationalFem;
+    desc.collision.thickness = 0.003;
+    return desc;
+  };
+  const DeformableId lower = *world.addDeformable(jelly("lower", {-0.1, 0.0, -0.1}, {0.1, 0.1, 0.1}, 4, 8.0));
+  const DeformableId upper = *world.addDeformable(jelly("upper", {-0.05, 0.2, -0.05}, {0.05, 0.3, 0.05}, 2, 1.0));
+  for (int step = 0; step < 150; ++step) ASSERT_TRUE(world.step(0.02).ok()) << "step " << step;
+  const auto x = world.nodePositions(lower), y = world.nodePositions(upper);
+  // No face of one crosses a face of the other, and no node of the upper is inside a
+  // tetrahedron of the lower.
+  int crossings = 0;
+  for (const auto& s : world.restMesh(lower).triangles)
+    for (const auto& t : world.restMesh(upper).triangles)
+      for (int e = 0; e < 3; ++e) {
+        crossings += edgeCrossesTriangle(x[s[e]], x[s[(e + 1) % 3]], y[t[0]], y[t[1]], y[t[2]]);
+        crossings += edgeCrossesTriangle(y[t[e]], y[t[(e + 1) % 3]], x[s[0]], x[s[1]], x[s[2]]);
+      }
+  EXPECT_EQ(crossings, 0);
+  int inside = 0;
+  for (const Vec3& p : y)
+    for (const auto& tet : world.restMesh(lower).tetrahedra) {
+      const Vec3 &a = x[tet[0]], &b = x[tet[1]], &c = x[tet[2]], &d = x[tet[3]];
+      const double volume = (b - a).cross(c - a).dot(d - a);
+      const double w0 = (b - p).cross(c - p).dot(d - p) / volume, w1 = (p - a).cross(c - a).dot(d - a) / volume,
+                   w2 = (b - a).cross(p - a).dot(d - a) / volume, w3 = (b - a).cross(c - a).dot(p - a) / volume;
+      inside += std::min({w0, w1, w2, w3}) > 1e-6;
+    }
+  EXPECT_EQ(inside, 0);
+  // It rests on the lower jelly: its bottom within the contact thickness of the lower's top
+  // under it (each 3 mm), both still.
+  double upperBottom = INFINITY, lowerTopUnder = -INFINITY;
+  for (const Vec3& p : y) upperBottom = std::min(upperBottom, p.y());
+  for (const Vec3& p : x)
+    if (std::abs(p.x()) < 0.05 && std::abs(p.z()) < 0.05) lowerTopUnder = std::max(lowerTopUnder, p.y());
+  std::printf("upper jelly's bottom %.4f m, the lower's top under it %.4f m\n", upperBottom, lowerTopUnder);
+  EXPECT_GT(upperBottom, lowerTopUnder - 0.001);
+  EXPECT_LT(upperBottom, lowerTopUnder + 0.006 + 0.002);
+  double fastest = 0.0;
+  for (const Vec3& v : world.nodeVelocities(lower)) fastest = std::max(fastest, v.norm());
+  for (const Vec3& v : world.nodeVelocities(upper)) fastest = std::max(fastest, v.norm());
+  EXPECT_LT(fastest, 0.01);
+}
+
 // ---- Momentum at a rigid-deformable contact -----------------------------------------------
 
 TEST(Contact, ImpulsesAtARigidContactAreEqualAndOpposite) {
