@@ -192,6 +192,46 @@ void BM_ClothOnSphere(benchmark::State& state) {
 }
 BENCHMARK(BM_ClothOnSphere)->Arg(21)->Arg(31)->Unit(benchmark::kMillisecond)->Iterations(3);
 
+// A 7×31 strip standing on its end collapses and folds onto itself (the self-collision test's
+// scene), 3 s at h = 1/60 s: self-contacts, and the impact zones that keep it from crossing.
+void BM_SelfCollisionFold(benchmark::State& state) {
+  double detection = 0.0, integrate = 0.0, total = 0.0;
+  int64_t steps = 0, zoneNodes = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    World world;
+    RigidBodyDesc ground;
+    ground.name = "ground";
+    ground.shape = RigidShape::plane({0, 1, 0}, 0.0);
+    ground.motion = MotionType::Static;
+    check(world.addRigidBody(ground).status());
+    DeformableDesc strip;
+    strip.name = "strip";
+    strip.mesh = *makeClothGrid({-0.15, 0.01, 0}, {0.3, 0, 0}, {0.25, 1.5, 0.02}, 7, 31, 0.1);
+    strip.inextensibility.enabled = true;
+    strip.bending.enabled = true;
+    strip.bending.maxForce = 0.01;
+    strip.collision.selfCollision = true;
+    strip.collision.thickness = 0.01;
+    check(world.addDeformable(strip).status());
+    state.ResumeTiming();
+    for (int step = 0; step < 180; ++step) {
+      check(world.step(kStep));
+      const StepReport& report = world.lastReport();
+      detection += report.seconds(Stage::CollisionDetection);
+      integrate += report.seconds(Stage::Integrate);
+      total += report.totalSeconds;
+      zoneNodes += report.impactZoneNodes;
+      ++steps;
+    }
+  }
+  state.counters["ms_per_step"] = 1e3 * total / steps;
+  state.counters["collision_ms"] = 1e3 * detection / steps;
+  state.counters["integrate_ms"] = 1e3 * integrate / steps;
+  state.counters["zone_nodes"] = static_cast<double>(zoneNodes) / steps;
+}
+BENCHMARK(BM_SelfCollisionFold)->Unit(benchmark::kMillisecond)->Iterations(2);
+
 // An n×n cloth pinned along one edge, its bilateral rows in one direct block.
 void BM_DirectCloth(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
