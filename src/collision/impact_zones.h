@@ -16,11 +16,12 @@
 //   L = Σ m_i r_i × (v_i − v̄),  I = Σ m_i (|r_i|² 𝟙 − r_i r_iᵀ),  ω = I⁺ L,
 //   x¹_i ← x̄ + h v̄ + R r_i,  R = R(h ω),  v_i ← v̄ + ω¹ × R r_i,  ω¹ = (R I Rᵀ)⁺ L,
 // (I⁺ the pseudo-inverse, for zones on a line): the end spin ω¹ is the one with the same
-// angular momentum for the turned zone, so L is kept exactly, not only to O(h). A rigid motion cannot make a zone cross
-// itself, so the test is repeated only between different zones, merging those that still
-// cross, until none do: each repeat merges zones, so it ends, at worst with one zone per
-// group of touching surfaces. A zone holding an immovable node (fixed point, anchor to a static
-// body) moves as its immovable nodes do, by their mean displacement.
+// angular momentum for the turned zone, so L is kept exactly, not only to O(h). A rigid motion
+// cannot make a zone cross itself, so the test is repeated only between different zones,
+// merging those that still cross, until none do: each repeat merges zones, so it ends, at
+// worst with one zone per group of touching surfaces (the passes are capped at 1,000). A zone
+// holding an immovable node (fixed point, anchor to a static body) moves as its immovable nodes
+// do, by their mean displacement.
 //
 // With a start free of crossings the end is free of them too. The zones' motion is an
 // inelastic collision of the nodes involved: linear and angular momentum are kept.
