@@ -182,5 +182,15 @@ TEST(ImpactZones, NothingMovesWhenNothingCrosses) {
   EXPECT_EQ(world.nodes.velocity[3], Vec3(0, 0, -4.0));
 }
 
+TEST(ImpactZones, ANonFinitePositionIsLeftToTheDivergenceCheck) {
+  TwoSurfaces world({1.0, 1.0, 1.0, 1.0});
+  const std::vector<Vec3> start = world.nodes.position;
+  world.nodes.position[3] = Vec3(NAN, 0.0, -1.0);
+  const ImpactZoneStats stats = separateByImpactZones(world.surfaces, start, world.nodes, 0.1);
+  EXPECT_EQ(stats.zones, 0);
+  EXPECT_TRUE(std::isnan(world.nodes.position[3].x()));
+  EXPECT_EQ(world.nodes.position[0], start[0]);
+}
+
 }  // namespace
 }  // namespace tandem

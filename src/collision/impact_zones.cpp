@@ -216,6 +216,10 @@ ImpactZoneStats separateByImpactZones(std::span<const CollisionSurface> surfaces
                                       NodeArrays& nodes, double timeStep) {
   ImpactZoneStats stats;
   if (surfaces.empty()) return stats;
+  // A diverged step (non-finite positions) is left to the step's divergence check.
+  for (const CollisionSurface& surface : surfaces)
+    for (int32_t n : surface.nodes)
+      if (!start[n].allFinite() || !nodes.position[n].allFinite()) return stats;
   Separator separator{surfaces, start, nodes, timeStep, nodes.position, nodes.velocity, {}, Zones(nodes.size()),
                       std::vector<char>(nodes.size(), 0)};
   separator.findMeetingSurfaces();
