@@ -33,11 +33,12 @@ struct Separator {
   std::span<const Vec3> start;
   NodeArrays& nodes;
   double timeStep;
-  std::vector<Vec3> end;          // positions before any zone moved them
-  std::vector<Vec3> velocity;     // velocities before any zone changed them
-  std::vector<char> meets;        // meets[a * count + b]: surfaces a and b may cross
+  std::vector<Vec3> end{};        // positions before any zone moved them
+  std::vector<Vec3> velocity{};   // velocities before any zone changed them
+  std::vector<char> meets{};      // meets[a * count + b]: surfaces a and b may cross
+  std::vector<Feature> faces{}, edges{};  // of the surfaces that may cross
   Zones zones{0};
-  std::vector<char> inZone;       // node has been merged with another
+  std::vector<char> inZone{};     // node has been merged with another
 
   Eigen::AlignedBox3d sweptBox(std::span<const int32_t> featureNodes) const {
     Eigen::AlignedBox3d box;
@@ -65,19 +66,29 @@ struct Separator {
     return false;
   }
 
-  // Pairs of features whose swept boxes overlap, from different zones, that cross on the way.
-  // Calls `crossing` with the pair's nodes (up to four; -1 unused).
-  template <class OnCrossing>
-  int findCrossings(OnCrossing&& crossing) {
-    const size_t count = surfaces.size();
-    std::vector<Feature> faces, edges;
-    for (size_t s = 0; s < count; ++s) {
+  void gatherFeatures() {
+    for (size_t s = 0; s < surfaces.size(); ++s) {
       if (!involved(s)) continue;
       const auto surface = static_cast<int32_t>(s);
       for (const auto& t : surfaces[s].triangles) faces.push_back({surface, t});
       for (const auto& e : surfaces[s].edges) edges.push_back({surface, {e[0], e[1], -1}});
     }
-    if (faces.empty() && edges.empty()) return 0;
+  }
+
+  // Whether a node of a surface that may cross is not finite (a diverged step).
+  bool anyNotFinite() const {
+    for (size_t s = 0; s < surfaces.size(); ++s)
+      if (involved(s))
+        for (int32_t n : surfaces[s].nodes)
+          if (!start[n].allFinite() || !nodes.position[n].allFinite()) return true;
+    return false;
+  }
+
+  // Pairs of features whose swept boxes overlap, from different zones, that cross on the way.
+  // Calls `crossing` with the pair's nodes (up to four; -1 unused).
+  template <class OnCrossing>
+  int findCrossings(OnCrossing&& crossing) {
+    const size_t count = surfaces.size();
     // Cells as large as the largest swept feature, so each feature lies in at most 8.
     std::vector<Eigen::AlignedBox3d> faceBoxes(faces.size()), edgeBoxes(edges.size());
     double cell = 1e-6;
@@ -215,14 +226,16 @@ struct Separator {
 ImpactZoneStats separateByImpactZones(std::span<const CollisionSurface> surfaces, std::span<const Vec3> start,
                                       NodeArrays& nodes, double timeStep) {
   ImpactZoneStats stats;
-  if (surfaces.empty()) return stats;
-  // A diverged step (non-finite positions) is left to the step's divergence check.
-  for (const CollisionSurface& surface : surfaces)
-    for (int32_t n : surface.nodes)
-      if (!start[n].allFinite() || !nodes.position[n].allFinite()) return stats;
-  Separator separator{surfaces, start, nodes, timeStep, nodes.position, nodes.velocity, {}, Zones(nodes.size()),
-                      std::vector<char>(nodes.size(), 0)};
+  Separator separator{surfaces, start, nodes, timeStep};
   separator.findMeetingSurfaces();
+  separator.gatherFeatures();
+  if (separator.faces.empty() && separator.edges.empty()) return stats;
+  // A diverged step (non-finite positions) is left to the step's divergence check.
+  if (separator.anyNotFinite()) return stats;
+  separator.end = nodes.position;
+  separator.velocity = nodes.velocity;
+  separator.zones = Zones(nodes.size());
+  separator.inZone.assign(nodes.size(), 0);
   auto merge = [&](const std::array<int32_t, 4>& pair) {
     for (int32_t n : pair) separator.inZone[n] = 1;
     for (int k = 1; k < 4; ++k) separator.zones.merge(pair[k], pair[0]);

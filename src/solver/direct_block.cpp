@@ -10,9 +10,9 @@ namespace {
 // joined by edges too) to stay solvable; any larger and it softens long chains, whose
 // smallest eigenvalue falls like 1/n² (a 1,000-node rope stretches by 390 % at ε = 1e-4).
 constexpr double kRelativeCompliance = 1e-9;
-// Rounds of releasing pulling contacts per solve (each refactorises the block).
+// Rounds of releasing pulling contacts per solve; each is solved again with a low-rank
+// correction, until this many contacts are let go since the last factorisation, then refactorised.
 constexpr int kMaxReleaseRounds = 3;
-// Contacts let go by a low-rank correction before the block is refactorised instead.
 constexpr Eigen::Index kLowRankReleases = 32;
 // h² K_g per edge is at most this multiple of its lighter node's mass.
 constexpr double kMaxStiffnessToMass = 100;

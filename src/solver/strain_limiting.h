@@ -53,6 +53,7 @@ inline constexpr double kStrainConverged = 1e-3;  // done when no edge was corre
 inline constexpr int kStrainPasses = 40;          // else after this many passes,
 inline constexpr double kStrainStillTooFar = 0.03;  // unless an edge was still 3 % beyond the limit,
 inline constexpr int kStrainPassesAtMost = 400;   // then up to this many
+inline constexpr int kStrainPushOutEvery = 4;     // passes between keeping nodes out of shapes
 
 // A node that touched a rigid shape in this step, to be kept out of it.
 struct NodeOnShape {
@@ -101,7 +102,7 @@ inline void limitStrain(std::span<const InextensibilityRow> rows, std::span<cons
     for (int32_t r : limited) worst = std::max(worst, limitEdge(rows[r], x, weight));
     const bool last = worst < kStrainConverged || (pass >= kStrainPasses && worst < kStrainStillTooFar) ||
                       pass + 1 == kStrainPassesAtMost;
-    if (last || pass % 4 == 0)
+    if (last || pass % kStrainPushOutEvery == 0)
       for (const NodeOnShape& contact : contacts) keepOutOfShape(contact, x, pushed);
     if (last) break;
   }
