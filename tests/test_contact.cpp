@@ -197,6 +197,45 @@ TEST(Contact, BoxRestsOnAHammockAndThePinsCarryItsWeight) {
   EXPECT_NEAR(normal, kGravity * kStep, 0.05 * kGravity * kStep);
 }
 
+// Lifted off the hammock, the box's contacts would pull the cloth up with it: the direct block
+// lets them go (solved again without their equations, src/solver/direct_block.cpp), so the box
+// rises as if nothing held it, (F − m g) / m, and the cloth stays down.
+TEST(Contact, BoxLiftedOffAHammockLeavesTheClothBehind) {
+  World world;
+  const int n = 21;
+  DeformableDesc desc = clothDesc("hammock", {-0.5, 1.0, -0.5}, 1.0, n, 0.2);
+  desc.damping = 2.0;
+  const DeformableId hammock = *world.addDeformable(desc);
+  for (int node : {0, n - 1, n * (n - 1), n * n - 1}) ASSERT_TRUE(world.fixNode(hammock, node).ok());
+  RigidBodyDesc crate;
+  crate.name = "box";
+  crate.shape = RigidShape::box({0.05, 0.05, 0.05});
+  crate.mass = 1.0;
+  crate.position = {0, 1.1, 0};
+  const RigidBodyId box = *world.addRigidBody(crate);
+  for (int step = 0; step < 120; ++step) ASSERT_TRUE(world.step(kStep).ok()) << "step " << step;
+  ASSERT_FALSE(world.contacts().empty());
+  // Pulled up by a grab saturated at four times its weight: it rises at 3 g.
+  GrabDesc grab;
+  grab.body = box;
+  grab.point = world.rigidPosition(box);
+  grab.target = grab.point + Vec3(0, 2.0, 0);
+  grab.maxForce = 4.0 * kGravity;
+  ASSERT_TRUE(world.addGrab(grab).ok());
+  ASSERT_TRUE(world.step(kStep).ok());  // the cloth, unloaded, springs up under it for a step
+  const double clothBefore = world.nodePositions(hammock)[n * n / 2].y();
+  const double heightBefore = world.rigidPosition(box).y();
+  for (int step = 0; step < 15; ++step) {
+    const double before = world.rigidLinearVelocity(box).y();
+    ASSERT_TRUE(world.step(kStep).ok());
+    const double acceleration = (world.rigidLinearVelocity(box).y() - before) / kStep;
+    EXPECT_NEAR(acceleration, 3 * kGravity, 0.01 * kGravity) << "step " << step;
+  }
+  // It went up over a metre; the cloth relaxed a few centimetres, no more.
+  EXPECT_GT(world.rigidPosition(box).y() - heightBefore, 1.0);
+  EXPECT_LT(world.nodePositions(hammock)[n * n / 2].y() - clothBefore, 0.1);
+}
+
 // ---- A corner into a coarse face ----------------------------------------------------------
 
 TEST(Contact, BoxCornerDoesNotPokeThroughACoarseFace) {
