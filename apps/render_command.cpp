@@ -71,7 +71,7 @@ int render(const RenderCommandOptions& options) {
 
   World world;
   const std::optional<SceneInfo> scene = buildInto(world, options.scene);
-  if (!scene || !overrideIterations(world, options.iterations)) return 1;
+  if (!scene || !overrideSolver(world, options.iterations)) return 1;
   const double h = scene->timeStep;
   if (Status s = advanceTo(world, options.start, h); !s) {
     std::fprintf(stderr, "tandem: %s\n", s.message().c_str());

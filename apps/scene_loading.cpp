@@ -38,10 +38,11 @@ std::optional<SceneInfo> buildInto(World& world, const std::string& scene) {
                    builtin->defaultSeconds};
 }
 
-bool overrideIterations(World& world, int iterations) {
-  if (iterations <= 0) return true;
+bool overrideSolver(World& world, int iterations, int substeps) {
+  if (iterations <= 0 && substeps <= 0) return true;
   WorldSettings settings = world.settings();
-  settings.solver.iterations = iterations;
+  if (iterations > 0) settings.solver.iterations = iterations;
+  if (substeps > 0) settings.solver.substeps = substeps;
   if (Status s = world.setSettings(settings); !s) {
     std::fprintf(stderr, "tandem: %s\n", s.message().c_str());
     return false;

@@ -23,8 +23,8 @@ struct SceneInfo {
 // when it cannot.
 std::optional<SceneInfo> buildInto(World& world, const std::string& scene);
 
-// Sets the solver's iterations when `iterations` > 0; prints the problem when refused.
-bool overrideIterations(World& world, int iterations);
+// Sets the solver's iterations and substeps where given (> 0); prints the problem when refused.
+bool overrideSolver(World& world, int iterations, int substeps = 0);
 
 int nodeCount(const World& world);
 

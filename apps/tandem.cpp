@@ -29,7 +29,7 @@ using tandem::BuiltinScene;
 using tandem::StepReport;
 using tandem::cli::buildInto;
 using tandem::cli::nodeCount;
-using tandem::cli::overrideIterations;
+using tandem::cli::overrideSolver;
 using tandem::cli::SceneInfo;
 
 struct RunOptions {
@@ -40,6 +40,7 @@ struct RunOptions {
   double seconds = 0.0;
   double timeStep = 0.0;
   int iterations = 0;
+  int substeps = 0;
   bool report = false;
   bool quiet = false;
 };
@@ -74,7 +75,7 @@ int run(const RunOptions& options) {
   tandem::World world;
   const std::optional<SceneInfo> scene = buildInto(world, options.scene);
   if (!scene) return 1;
-  if (!overrideIterations(world, options.iterations)) return 2;
+  if (!overrideSolver(world, options.iterations, options.substeps)) return 2;
   const double h = options.timeStep > 0 ? options.timeStep : scene->timeStep;
   const double seconds = options.seconds > 0 ? options.seconds : scene->duration;
   const long steps = options.steps > 0 ? options.steps : std::max(1L, std::lround(seconds / h));
@@ -91,9 +92,10 @@ int run(const RunOptions& options) {
 
   const int nodes = nodeCount(world);
   if (!options.quiet)
-    std::printf("Scene '%s': %s\n  %d deformable bodies (%d nodes), %d rigid bodies; h = %.4g s, %d iterations\n",
+    std::printf("Scene '%s': %s\n  %d deformable bodies (%d nodes), %d rigid bodies; h = %.4g s, %d iterations, %d substeps\n",
                 scene->name.c_str(), scene->description.c_str(), world.deformableCount(),
-                nodes, world.rigidBodyCount(), h, world.settings().solver.iterations);
+                nodes, world.rigidBodyCount(), h, world.settings().solver.iterations,
+                world.settings().solver.substeps);
 
   std::vector<double> stepMs;
   stepMs.reserve(steps);
@@ -196,6 +198,7 @@ int main(int argc, char** argv) {
       ->excludes(stepsOption);
   runCommand->add_option("--dt", options.timeStep, "Time step in seconds")->check(CLI::Range(1e-6, 1.0));
   runCommand->add_option("--iterations", options.iterations, "Solver iterations K")->check(CLI::Range(1, 1000));
+  runCommand->add_option("--substeps", options.substeps, "Solver substeps n per step")->check(CLI::Range(1, 1000));
   runCommand->add_flag("--report", options.report, "Print stage times, row counts and convergence");
   runCommand->add_flag("--quiet", options.quiet, "Print only the summary lines");
   auto* recordOption =

@@ -60,12 +60,12 @@ std::span<const double> World::nodeInverseMasses(DeformableId body) const {
 }
 const DeformableMesh& World::restMesh(DeformableId body) const { return m_impl->deformables.at(body.index).restMesh; }
 
-Vec3 World::fixedPointImpulse(FixedPointId id) const { return m_impl->rows.fixedPoints.at(id.index).lambda; }
+Vec3 World::fixedPointImpulse(FixedPointId id) const { return m_impl->rows.fixedPoints.at(id.index).stepImpulse; }
 
 AnchorState World::anchorState(AnchorId id) const {
   const AnchorRow& row = m_impl->rows.anchors.at(id.index);
   AnchorState state;
-  state.impulse = row.lambda;
+  state.impulse = row.stepImpulse;
   state.worldPointOnBody = m_impl->bullet.position(row.body) + m_impl->bullet.orientation(row.body) * row.localPoint;
   state.worldPointOnDeformable = row.deformablePoint(m_impl->nodes.position);
   return state;
@@ -88,7 +88,7 @@ std::vector<ContactReport> World::contacts() const {
       if (row.coefficient[k] > 0) report.point += row.coefficient[k] * w.nodes.position[row.node[k]];
     report.normal = row.normal;
     report.gap = row.gap;
-    report.normalImpulse = row.lambdaNormal;
+    report.normalImpulse = row.stepNormalImpulse;
     if (row.isNodeOnRigid() && !holdReported[row.node[0]]) {
       const auto i = static_cast<size_t>(row.node[0] - body.firstNode);
       if (body.supports.holdBody[i] == row.body) {
@@ -96,7 +96,7 @@ std::vector<ContactReport> World::contacts() const {
         holdReported[row.node[0]] = true;
       }
     }
-    report.frictionImpulse = row.impulse() - row.lambdaNormal * row.normal;
+    report.frictionImpulse = row.stepFrictionImpulse;
     reports.push_back(report);
   }
   return reports;
@@ -108,31 +108,42 @@ Status World::step(double h) {
   if (!(std::isfinite(h) && h > 0 && h <= 1.0))
     return Error{"step: time step must be in (0, 1] seconds, got " + formatNumber(h)};
   Impl& w = *m_impl;
+  const int substeps = w.settings.solver.substeps;
+  const double substep = h / substeps;
   w.timeStep = h;
   StepReport& report = w.report;
   report.rmsDeltaLambda.clear();
+  report.stageSeconds.fill(0.0);
   StageClock clock;
-  auto timed = [&](Stage stage) { report.stageSeconds[static_cast<size_t>(stage)] = clock.lap(); };
+  auto timed = [&](Stage stage) { report.stageSeconds[static_cast<size_t>(stage)] += clock.lap(); };
 
+  w.beginStep();                        // start-of-step positions and poses; impulse sums cleared
   w.computeUnconstrainedVelocities(h);  // 1. deformable models: unconstrained node velocities
   timed(Stage::Models);
-  w.manageSleepOfHeldBodies();          // 2. Bullet: gravity and external forces on rigid bodies
-  w.bullet.predictRigidMotion(h);
+  w.manageSleepOfHeldBodies();
   timed(Stage::RigidPrediction);
-  w.bullet.detectCollisions(h);         // 3. Bullet: rigid-rigid contacts; Tandem: deformable ones
-  w.detectDeformableContacts(h);
+  w.detectDeformableContacts(h);        // 3. Tandem: deformable contacts, once per step, speculative
+  w.spreadModelVelocities(substeps);    //    the models' velocity change is then given out per substep
   timed(Stage::CollisionDetection);
-  w.prepareRows(h);                     // 4. Tandem's rows: Jacobians, effective masses, biases
-  timed(Stage::Rows);
-  w.bullet.solve(h, w.settings.solver.iterations, w);  // 5+6. K × [Bullet iteration, Tandem sweep]
-  timed(Stage::Solve);
-  w.rememberContacts();
-  w.integrateNodes(h);                  // 7. symplectic Euler for nodes; Bullet for rigid bodies;
-  w.bullet.integrate(h);                //    then the direct blocks' rows projected back by position,
-                                        //    and the edges no block projected limited to 1 % stretch;
-  w.projectDirectBlocks();              //    last, impact zones where surfaces would have crossed
-  w.limitStrainOfUnprojectedRows();
-  w.separateCrossingSurfaces(h);
+  for (int s = 0; s < substeps; ++s) {  // n substeps of h/n:
+    w.beginSubstep(s, substeps);        //   the models' share; moving targets; contact gaps moved on
+    w.bullet.predictRigidMotion(substep);  // 2. Bullet: gravity and external forces on rigid bodies
+    timed(Stage::RigidPrediction);
+    w.bullet.detectCollisions(substep);    // 3. Bullet: rigid-rigid contacts
+    timed(Stage::CollisionDetection);
+    w.prepareRows(substep);                // 4. Tandem's rows: Jacobians, effective masses, biases
+    timed(Stage::Rows);
+    w.bullet.solve(substep, w.settings.solver.iterations, w);  // 5+6. K × [Bullet iteration, Tandem sweep]
+    w.endSubstepSolve(s + 1 == substeps);
+    timed(Stage::Solve);
+    w.integrateNodes(substep);             // 7. symplectic Euler for nodes; Bullet for rigid bodies
+    w.bullet.integrate(substep);
+    timed(Stage::Integrate);
+  }
+  w.timeStep = h;
+  w.projectDirectBlocks();              // 7. then the direct blocks' rows projected back by position,
+  w.limitStrainOfUnprojectedRows();     //    the edges no block projected limited to 1 % stretch;
+  w.separateCrossingSurfaces(h);        //    last, impact zones where surfaces would have crossed
   timed(Stage::Integrate);
 
   report.bulletContactManifolds = w.bullet.manifoldCount();  // 8. report

@@ -10,6 +10,8 @@ Status validateSettings(const WorldSettings& settings) {
   if (!settings.gravity.allFinite()) return Error{"settings: gravity must be finite"};
   if (settings.solver.iterations < 1 || settings.solver.iterations > 1000)
     return Error{"settings: solver iterations must be in [1, 1000], got " + std::to_string(settings.solver.iterations)};
+  if (settings.solver.substeps < 1 || settings.solver.substeps > 1000)
+    return Error{"settings: solver substeps must be in [1, 1000], got " + std::to_string(settings.solver.substeps)};
   if (!(settings.solver.baumgarte >= 0 && settings.solver.baumgarte <= 1))
     return Error{"settings: baumgarte (β·h) must be in [0, 1], got " + formatNumber(settings.solver.baumgarte)};
   if (!(settings.solver.contactSlop >= 0 && std::isfinite(settings.solver.contactSlop)))

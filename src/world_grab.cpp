@@ -72,7 +72,7 @@ Status World::removeGrab(GrabId id) {
 
 Vec3 World::grabImpulse(GrabId id) const {
   const std::vector<GrabRow>& grabs = m_impl->rows.grabs;
-  return checkGrab(grabs, id) ? grabs[id.index].lambda : Vec3::Zero();
+  return checkGrab(grabs, id) ? grabs[id.index].stepImpulse : Vec3::Zero();
 }
 
 Vec3 World::grabPoint(GrabId id) const {

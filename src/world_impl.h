@@ -76,6 +76,17 @@ struct World::Impl final : bullet::SolverHooks {
   bool directBlocksStale = true;  // rows were added since the blocks were built
   std::vector<char> unprojected;  // per deformable: in a block that could not project this step
   std::vector<Vec3> stepStartPositions;  // node positions before this step moved them
+  std::vector<Vec3> stepStartVelocities;  // and their velocities before the models changed them
+  std::vector<Vec3> modelVelocityChange;  // per node: what the models add over the step, per substep
+  struct RigidPose {
+    Vec3 centerOfMass;
+    Quat orientation;
+  };
+  std::vector<RigidPose> stepStartPoses;  // rigid bodies before this step moved them
+  struct TargetPath {
+    Vec3 from, to;  // where a moving target is at the step's start and end
+  };
+  std::vector<TargetPath> fixedPointPaths, grabPaths;
   struct ContactImpulse {
     double normal;
     Vec3 friction;
@@ -87,11 +98,90 @@ struct World::Impl final : bullet::SolverHooks {
   double time = 0.0;
   int64_t steps = 0;
   double timeStep = 0.0;  // of the step in progress
+  double substepLength = 0.0;  // h / n: what the rows are prepared and solved over
 
   explicit Impl(const WorldSettings& s) : settings(s), bullet(s.gravity) {}
 
   SolverContext context() {
-    return {nodes.velocity, nodes.inverseMass, rigid, timeStep, settings.solver.baumgarte / timeStep};
+    return {nodes.velocity, nodes.inverseMass, rigid, substepLength, settings.solver.baumgarte / substepLength};
+  }
+
+  // ---- Substeps ---------------------------------------------------------------------------
+  // The step's start: positions and poses the substeps' contact gaps are measured from, the
+  // moving targets' paths, and the impulse sums the report gives cleared.
+  void beginStep() {
+    stepStartPositions = nodes.position;
+    if (settings.solver.substeps > 1) stepStartVelocities = nodes.velocity;
+    stepStartPoses.resize(static_cast<size_t>(bullet.rigidBodyCount()));
+    for (int b = 0; b < bullet.rigidBodyCount(); ++b) stepStartPoses[b] = {bullet.position(b), bullet.orientation(b)};
+    fixedPointPaths.clear();
+    for (FixedPointRow& row : rows.fixedPoints) {
+      fixedPointPaths.push_back({row.previousTarget, row.target});
+      row.stepImpulse.setZero();
+    }
+    grabPaths.clear();
+    for (GrabRow& row : rows.grabs) {
+      grabPaths.push_back({row.previousTarget, row.target});
+      row.stepImpulse.setZero();
+    }
+    for (AnchorRow& row : rows.anchors) row.stepImpulse.setZero();
+    for (RigidSolverState& body : rigid) body.impulse = body.angularImpulse = Vec3::Zero();
+  }
+
+  // The models ran once over the whole step (v ← v*); with n substeps the nodes go back to their
+  // start velocity and receive (v* − v) / n at the start of each substep, as gravity would.
+  void spreadModelVelocities(int substeps) {
+    if (substeps == 1) return;
+    modelVelocityChange.resize(nodes.size());
+    for (size_t i = 0; i < nodes.size(); ++i) {
+      modelVelocityChange[i] = (nodes.velocity[i] - stepStartVelocities[i]) / substeps;
+      nodes.velocity[i] = stepStartVelocities[i];
+    }
+  }
+
+  // Substep s of n: the models' share of the velocity change, the moving targets at their
+  // substep's ends, and each contact's gap moved on by its two sides' motion since the step's
+  // start (the normal is kept; a rigid side's point turns with its body).
+  void beginSubstep(int substep, int substeps) {
+    if (substeps == 1) return;
+    for (size_t i = 0; i < nodes.size(); ++i) nodes.velocity[i] += modelVelocityChange[i];
+    const double from = static_cast<double>(substep) / substeps, to = static_cast<double>(substep + 1) / substeps;
+    for (size_t r = 0; r < rows.fixedPoints.size(); ++r) {
+      const TargetPath& path = fixedPointPaths[r];
+      rows.fixedPoints[r].previousTarget = path.from + from * (path.to - path.from);
+      rows.fixedPoints[r].target = path.from + to * (path.to - path.from);
+    }
+    for (size_t r = 0; r < rows.grabs.size(); ++r) {
+      const TargetPath& path = grabPaths[r];
+      rows.grabs[r].previousTarget = path.from + from * (path.to - path.from);
+      rows.grabs[r].target = path.from + to * (path.to - path.from);
+    }
+    if (substep == 0) return;
+    for (ContactRow& row : rows.contacts) {
+      Vec3 moved = Vec3::Zero();
+      for (int k = 0; k < 4; ++k)
+        moved += row.coefficient[k] * (nodes.position[row.node[k]] - stepStartPositions[row.node[k]]);
+      if (row.body >= 0) {
+        const RigidPose& start = stepStartPoses[row.body];
+        row.offset = (bullet.orientation(row.body) * start.orientation.conjugate()) * row.startOffset;
+        moved -= bullet.position(row.body) - start.centerOfMass + row.offset - row.startOffset;
+      }
+      row.gap = row.startGap + row.normal.dot(moved);
+    }
+  }
+
+  // After a substep's solve: its impulses added to the step's sums; after the last, the
+  // contacts remembered for the next step's warm start and models.
+  void endSubstepSolve(bool lastSubstep) {
+    for (FixedPointRow& row : rows.fixedPoints) row.stepImpulse += row.lambda;
+    for (AnchorRow& row : rows.anchors) row.stepImpulse += row.lambda;
+    for (GrabRow& row : rows.grabs)
+      if (row.active) row.stepImpulse += row.lambda;
+    for (ContactRow& row : rows.contacts) {
+      row.stepNormalImpulse += row.lambdaNormal;
+      row.stepFrictionImpulse += row.impulse() - row.lambdaNormal * row.normal;
+    }
+    if (lastSubstep) rememberContacts();
   }
 
   // ---- Stage 1: models -----------------------------------------------------------------
@@ -214,6 +304,10 @@ struct World::Impl final : bullet::SolverHooks {
         if (row.weight[k] != 0.0) anchored.insert(nodeBodyKey(row.node[k], row.body));
     rows.contacts.clear();
     detectContacts(surfaces, nodes, shapes, anchored, h, rows.contacts);
+    for (ContactRow& row : rows.contacts) {
+      row.startGap = row.gap;
+      row.startOffset = row.offset;
+    }
     // Warm start from last step's impulse on the same feature, friction kept in the new plane.
     for (ContactRow& row : rows.contacts) {
       auto previous = previousContacts.find(row.key);
@@ -248,7 +342,7 @@ struct World::Impl final : bullet::SolverHooks {
     for (const ContactRow& row : rows.contacts) {
       if (!row.isNodeOnRigid() || rigid[row.body].inverseMass != 0.0) continue;
       const double surfaceSpeed = row.normal.dot(rigid[row.body].velocityAt(row.offset));
-      const double gapAtEnd = row.gap + timeStep * row.normal.dot(contactRelativeVelocity(row, ctx));
+      const double gapAtEnd = row.gap + substepLength * row.normal.dot(contactRelativeVelocity(row, ctx));
       DeformableRecord& body = deformables[deformableIndexOfNode(row.node[0])];
       body.supports.add(row.node[0], row.body, row.normal, gapAtEnd, surfaceSpeed);
     }
@@ -256,9 +350,9 @@ struct World::Impl final : bullet::SolverHooks {
 
   // ---- Stage 4: rows ---------------------------------------------------------------------
   void prepareRows(double h) {
+    substepLength = h;
     if (directBlocksStale) buildDirectBlocks();
     bullet.loadRigidProperties(rigid);
-    for (RigidSolverState& body : rigid) body.impulse = body.angularImpulse = Vec3::Zero();
     rows.prepare(nodes, rigid, settings.gravity, h, settings.solver.baumgarte / h, settings.solver.contactSlop);
     bool anyRows = false;
     for (DirectBlock& block : directBlocks) {
@@ -385,7 +479,6 @@ struct World::Impl final : bullet::SolverHooks {
 
   // ---- Stage 7: integrate ----------------------------------------------------------------
   void integrateNodes(double h) {
-    stepStartPositions = nodes.position;
     for (size_t i = 0; i < nodes.size(); ++i) nodes.position[i] += h * nodes.velocity[i];
     pushOutOfContacts();
     for (FixedPointRow& row : rows.fixedPoints) row.previousTarget = row.target;

@@ -53,6 +53,7 @@ enum class FrictionModel { Coulomb, Pressure };
 
 struct SolverSettings {
   int iterations = 4;        // K: each is one Bullet iteration, then one sweep over Tandem's rows
+  int substeps = 1;          // n: the solve and the integration run n times per step, each over h/n
   double baumgarte = 0.1;    // β·h: the fraction of a position error corrected per step (β = 0.1/h)
   bool warmStart = true;     // start each row from last step's impulse
   FrictionModel friction = FrictionModel::Coulomb;

@@ -45,7 +45,8 @@ struct AnchorRow {
   Mat3 effectiveMass = Mat3::Zero();  // K⁻¹, zero when nothing can move
   Vec3 bias = Vec3::Zero();
   double maxImpulse = 0.0;
-  Vec3 lambda = Vec3::Zero();
+  Vec3 lambda = Vec3::Zero();        // this substep's impulse, kept for warm starting
+  Vec3 stepImpulse = Vec3::Zero();   // summed over the step's substeps: what is reported
 
   Vec3 deformablePoint(std::span<const Vec3> x) const { return barycentricSum(node, weight, x); }
   Vec3 deformableVelocity(std::span<const Vec3> v) const { return deformablePoint(v); }

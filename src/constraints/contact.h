@@ -50,7 +50,9 @@ struct ContactRow {
   int32_t body = -1;                       // rigid body on side B, or −1
   Vec3 offset = Vec3::Zero();              // r: rigid contact point minus centre of mass
   Vec3 normal = Vec3::UnitY();             // from B to A
-  double gap = 0.0;                        // m, start of step, thickness already taken off
+  double gap = 0.0;                        // m, start of the substep, thickness already taken off
+  double startGap = 0.0;                   // m, as detected at the start of the step
+  Vec3 startOffset = Vec3::Zero();         // r at the start of the step
   double friction = 0.0;                   // combined μ
   double contactMass = 0.0;                // kg, for the pressure friction model
   uint64_t key = 0;                        // feature, for warm starting across steps
@@ -63,6 +65,8 @@ struct ContactRow {
   double pressureBound = 0.0;              // μ m |g·n| h, for the pressure model
   double lambdaNormal = 0.0;               // N·s, ≥ 0
   Eigen::Vector2d lambdaTangent = Eigen::Vector2d::Zero();
+  double stepNormalImpulse = 0.0;          // summed over the step's substeps: what is reported
+  Vec3 stepFrictionImpulse = Vec3::Zero();
   bool inDirectBlock = false;  // its normal row is solved by a direct block
   bool releasedFromBlock = false;  // a block let it go this step (it would have pulled)
   bool releasedLastStep = false;   // the same feature was let go last step

@@ -33,7 +33,8 @@ struct FixedPointRow {
   double effectiveMass = 0.0;
   double maxImpulse = 0.0;
   Vec3 bias = Vec3::Zero();
-  Vec3 lambda = Vec3::Zero();  // accumulated impulse, kept across steps for warm starting
+  Vec3 lambda = Vec3::Zero();  // accumulated impulse of a substep, kept for warm starting
+  Vec3 stepImpulse = Vec3::Zero();  // summed over the step's substeps: what is reported
 };
 
 inline Vec3 fixedPointError(const Vec3& position, const Vec3& target) { return position - target; }

@@ -58,6 +58,7 @@ struct GrabRow {
   double softness = 0.0;     // γ
   double maxImpulse = 0.0;
   Vec3 lambda = Vec3::Zero();
+  Vec3 stepImpulse = Vec3::Zero();  // summed over the step's substeps: what is reported
 
   bool onRigid() const { return body >= 0; }
 

@@ -333,6 +333,7 @@ void readSolver(ObjectReader& root, Scene& out) {
   ObjectReader solver(root.required("solver"), root.fieldPath("solver"));
   SolverSettings& s = out.settings.solver;
   s.iterations = solver.integer("iterations", s.iterations, 1, 1000);
+  s.substeps = solver.integer("substeps", s.substeps, 1, 1000);
   s.baumgarte = solver.numberIn("baumgarte", s.baumgarte, 0.0, 1.0);
   s.warmStart = solver.boolean("warm_start", s.warmStart);
   s.friction = solver.choice("friction_model", scene::kFrictionModelNames, s.friction);

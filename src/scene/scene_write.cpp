@@ -204,6 +204,7 @@ std::string sceneToJson(const Scene& scene) {
            {"divergence_speed", scene.settings.divergenceSpeed},
            {"solver",
             {{"iterations", solver.iterations},
+             {"substeps", solver.substeps},
              {"baumgarte", solver.baumgarte},
              {"warm_start", solver.warmStart},
              {"friction_model", scene::nameOf(scene::kFrictionModelNames, solver.friction)},
