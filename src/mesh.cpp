@@ -142,6 +142,32 @@ Result<DeformableMesh> makeRope(const Vec3& start, const Vec3& end, int nodeCoun
   return mesh;
 }
 
+Result<DeformableMesh> makeRopeAlongPath(const std::vector<Vec3>& path, int nodeCount, double totalMass) {
+  if (path.size() < 2) return Error{"rope: a path needs at least 2 points, got " + std::to_string(path.size())};
+  if (Status s = checkCounts(nodeCount, 2, "node count", "rope"); !s) return Error{s.message()};
+  if (Status s = checkTotalMass(totalMass, "rope"); !s) return Error{s.message()};
+  std::vector<double> along{0.0};  // arc length at each path point
+  for (size_t i = 0; i < path.size(); ++i) {
+    if (Status s = checkPoint(path[i], ("path point " + std::to_string(i)).c_str(), "rope"); !s)
+      return Error{s.message()};
+    if (i > 0) along.push_back(along.back() + (path[i] - path[i - 1]).norm());
+  }
+  if (along.back() < 1e-9) return Error{"rope: the path has zero length"};
+  DeformableMesh mesh;
+  size_t segment = 0;
+  for (int i = 0; i < nodeCount; ++i) {
+    const double s = along.back() * (static_cast<double>(i) / (nodeCount - 1));
+    while (segment + 2 < path.size() && along[segment + 1] < s) ++segment;
+    const double length = along[segment + 1] - along[segment];
+    const double t = length > 0 ? std::clamp((s - along[segment]) / length, 0.0, 1.0) : 0.0;
+    mesh.positions.push_back(path[segment] + t * (path[segment + 1] - path[segment]));
+  }
+  for (int i = 0; i + 1 < nodeCount; ++i) mesh.edges.push_back({i, i + 1});
+  spreadMass(mesh, totalMass);
+  if (Status s = validateMesh(mesh); !s) return Error{"rope: " + s.message()};
+  return mesh;
+}
+
 Result<DeformableMesh> makeClothGrid(const Vec3& corner, const Vec3& sideU, const Vec3& sideV, int columns, int rows,
                                      double totalMass) {
   if (Status s = checkCounts(columns, 2, "columns", "cloth grid"); !s) return Error{s.message()};

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <numeric>
 
 namespace tandem {
@@ -19,6 +20,23 @@ TEST(Mesh, RopeHasEvenlySpacedNodesAndItsMass) {
   for (const auto& e : rope->edges)
     EXPECT_NEAR((rope->positions[e[1]] - rope->positions[e[0]]).norm(), 1.0 / 19, 1e-12);
   EXPECT_TRUE(validateMesh(*rope).ok());
+}
+
+TEST(Mesh, RopeAlongAPathIsEvenlySpacedByArcLength) {
+  // An L: 1 m up, 0.5 m across; 31 nodes, 5 cm apart along the path, the corner a node.
+  Result<DeformableMesh> rope = makeRopeAlongPath({{0, 0, 0}, {0, 1, 0}, {0.5, 1, 0}}, 31, 0.3);
+  ASSERT_TRUE(rope.ok()) << rope.message();
+  EXPECT_EQ(rope->edges.size(), 30u);
+  EXPECT_NEAR(totalMass(*rope), 0.3, 1e-12);
+  EXPECT_NEAR((rope->positions[20] - Vec3(0, 1, 0)).norm(), 0.0, 1e-12);
+  for (int i = 0; i < 20; ++i) EXPECT_NEAR(rope->positions[i].y(), 0.05 * i, 1e-12);
+  for (int i = 20; i < 31; ++i) EXPECT_NEAR(rope->positions[i].x(), 0.05 * (i - 20), 1e-12);
+  // Bad paths are refused with what is wrong.
+  EXPECT_EQ(makeRopeAlongPath({{0, 0, 0}}, 5, 1.0).message(), "rope: a path needs at least 2 points, got 1");
+  EXPECT_EQ(makeRopeAlongPath({{0, 0, 0}, {0, 0, 0}}, 5, 1.0).message(), "rope: the path has zero length");
+  EXPECT_FALSE(makeRopeAlongPath({{0, 0, 0}, {0, NAN, 0}}, 5, 1.0).ok());
+  EXPECT_FALSE(makeRopeAlongPath({{0, 0, 0}, {1, 0, 0}}, 1, 1.0).ok());
+  EXPECT_FALSE(makeRopeAlongPath({{0, 0, 0}, {1, 0, 0}}, 5, -1.0).ok());
 }
 
 TEST(Mesh, ClothGridCountsAndHinges) {

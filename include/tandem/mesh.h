@@ -35,6 +35,10 @@ Status validateMesh(const DeformableMesh& mesh);
 // A straight rope of `nodeCount` nodes from `start` to `end`, `totalMass` spread evenly.
 Result<DeformableMesh> makeRope(const Vec3& start, const Vec3& end, int nodeCount, double totalMass);
 
+// A rope of `nodeCount` nodes laid along the polyline through `path` (two or more points), spaced
+// evenly by arc length, `totalMass` spread evenly: a rope over a wheel or round a post.
+Result<DeformableMesh> makeRopeAlongPath(const std::vector<Vec3>& path, int nodeCount, double totalMass);
+
 // A rectangular cloth of `columns` x `rows` nodes spanning `corner` to `corner + sideU + sideV`,
 // with structural edges along both grid directions, alternating-diagonal triangles, and the
 // diagonals as shear edges. Node (column c, row r) has index r * columns + c.

@@ -22,8 +22,9 @@ inline constexpr int kSceneFormatVersion = 1;
 struct SceneMesh {
   enum class Kind { Rope, ClothGrid, TetBox, TetCylinder, Obj, TetGen };
   Kind kind = Kind::ClothGrid;
-  // rope
+  // rope: from start to end, or along path when it is not empty
   Vec3 start = Vec3::Zero(), end = Vec3::UnitX();
+  std::vector<Vec3> path;
   int nodes = 2;
   // cloth grid
   Vec3 corner = Vec3::Zero(), sideU = Vec3::UnitX(), sideV = Vec3::UnitZ();

@@ -36,7 +36,7 @@ double meshMeasure(const DeformableMesh& mesh) {
 Result<DeformableMesh> makeMesh(const Scene& scene, const SceneMesh& m) {
   using Kind = SceneMesh::Kind;
   switch (m.kind) {
-    case Kind::Rope: return makeRope(m.start, m.end, m.nodes, 1.0);
+    case Kind::Rope: return m.path.empty() ? makeRope(m.start, m.end, m.nodes, 1.0) : makeRopeAlongPath(m.path, m.nodes, 1.0);
     case Kind::ClothGrid: return makeClothGrid(m.corner, m.sideU, m.sideV, m.columns, m.rows, 1.0);
     case Kind::TetBox: return makeTetBox(m.minCorner, m.maxCorner, m.cells[0], m.cells[1], m.cells[2], 1.0);
     case Kind::TetCylinder:

@@ -162,8 +162,16 @@ SceneMesh readMesh(const Json& value, const std::string& path) {
   };
   switch (out.kind) {
     case Kind::Rope:
-      out.start = mesh.vec3("start");
-      out.end = mesh.vec3("end");
+      if (mesh.has("path")) {
+        const Json& points = mesh.required("path");
+        const std::string at = mesh.fieldPath("path");
+        if (!points.is_array() || points.size() < 2 || points.size() > 10000)
+          fail(at, "must be an array of 2 to 10000 [x, y, z] points");
+        for (size_t i = 0; i < points.size(); ++i) out.path.push_back(scene::readVec3(points[i], at + "/" + std::to_string(i)));
+      } else {
+        out.start = mesh.vec3("start");
+        out.end = mesh.vec3("end");
+      }
       out.nodes = count("nodes", 2);
       break;
     case Kind::ClothGrid:

@@ -85,8 +85,13 @@ Json meshJson(const SceneMesh& mesh) {
   Json out{{"type", scene::nameOf(scene::kMeshNames, mesh.kind)}};
   switch (mesh.kind) {
     case Kind::Rope:
-      out["start"] = vec(mesh.start);
-      out["end"] = vec(mesh.end);
+      if (!mesh.path.empty()) {
+        out["path"] = Json::array();
+        for (const Vec3& p : mesh.path) out["path"].push_back(vec(p));
+      } else {
+        out["start"] = vec(mesh.start);
+        out["end"] = vec(mesh.end);
+      }
       out["nodes"] = mesh.nodes;
       break;
     case Kind::ClothGrid:
