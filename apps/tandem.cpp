@@ -103,6 +103,8 @@ int run(const RunOptions& options) {
   std::array<int, static_cast<size_t>(tandem::RowType::Count)> maxRows{};
   int maxTotalRows = 0;
   const bool progress = !options.quiet && isatty(fileno(stdout)) && steps >= 200;
+  constexpr long kViolationsShown = 5;
+  long violatedSteps = 0;  // violations reported, one per deformable, kind and step
   const auto start = std::chrono::steady_clock::now();
   for (long i = 0; i < steps; ++i) {
     const auto before = std::chrono::steady_clock::now();
@@ -118,6 +120,11 @@ int run(const RunOptions& options) {
     }
     stepMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - before).count());
     const StepReport& report = world.lastReport();
+    for (const tandem::RowViolation& violation : report.violations) {
+      if (violatedSteps++ < kViolationsShown)
+        std::fprintf(stderr, "%standem: warning: step %ld (t = %.3f s): %s\n", progress ? "\n" : "", i + 1,
+                     world.time(), violation.message.c_str());
+    }
     for (size_t s = 0; s < stageTotals.size(); ++s) stageTotals[s] += report.stageSeconds[s];
     for (size_t t = 0; t < maxRows.size(); ++t) maxRows[t] = std::max(maxRows[t], report.rowCounts[t]);
     maxTotalRows = std::max(maxTotalRows, report.totalRows());
@@ -136,6 +143,10 @@ int run(const RunOptions& options) {
               steps * h, steps, maxTotalRows, wall, wall > 0 ? steps * h / wall : 0.0);
   std::printf("ms per step: mean %.3f, median %.3f, p95 %.3f, max %.3f\n", mean, percentile(stepMs, 0.5),
               percentile(stepMs, 0.95), percentile(stepMs, 1.0));
+  if (violatedSteps > 0)
+    std::fprintf(stderr, "tandem: warning: %ld violated rows over the run (anchors more than %g m apart, inextensible "
+                 "edges stretched more than %g %%); the first %ld are shown above\n", violatedSteps,
+                 tandem::kAnchorGapWarning, 100 * tandem::kEdgeStretchWarning, std::min(violatedSteps, kViolationsShown));
   if (!options.quiet) {
     for (int b = 0; b < world.rigidBodyCount(); ++b) {
       const tandem::RigidBodyId id{b};

@@ -21,6 +21,7 @@ Quat World::rigidOrientation(RigidBodyId body) const { return m_impl->bullet.ori
 Vec3 World::rigidLinearVelocity(RigidBodyId body) const { return m_impl->bullet.linearVelocity(body.index); }
 Vec3 World::rigidAngularVelocity(RigidBodyId body) const { return m_impl->bullet.angularVelocity(body.index); }
 double World::rigidMass(RigidBodyId body) const { return m_impl->bullet.mass(body.index); }
+Mat3 World::rigidInertia(RigidBodyId body) const { return m_impl->bullet.inertia(body.index); }
 bool World::rigidIsAwake(RigidBodyId body) const { return m_impl->bullet.isAwake(body.index); }
 double World::rigidContactImpulse(RigidBodyId a, RigidBodyId b) const {
   return m_impl->bullet.contactImpulse(a.index, b.index);
@@ -146,6 +147,7 @@ Status World::step(double h) {
   w.separateCrossingSurfaces(h);        //    last, impact zones where surfaces would have crossed
   timed(Stage::Integrate);
 
+  w.reportViolatedRows();
   report.bulletContactManifolds = w.bullet.manifoldCount();  // 8. report
   report.bulletJoints = w.bullet.jointCount();
   report.totalSeconds = 0.0;

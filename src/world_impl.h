@@ -126,6 +126,7 @@ struct World::Impl final : bullet::SolverHooks {
     }
     for (AnchorRow& row : rows.anchors) row.stepImpulse.setZero();
     for (RigidSolverState& body : rigid) body.impulse = body.angularImpulse = Vec3::Zero();
+    bullet.clearContactImpulses();
   }
 
   // The models ran once over the whole step (v ← v*); with n substeps the nodes go back to their
@@ -158,6 +159,20 @@ struct World::Impl final : bullet::SolverHooks {
     }
     if (substep == 0) return;
     for (ContactRow& row : rows.contacts) {
+      // A node against a shape is measured again: its normal turns as it goes round a curved
+      // surface (held to the step's first tangent plane, a rope sliding round a post was
+      // pulled outwards, an infeasible set that stretched it).
+      if (row.isNodeOnRigid()) {
+        const double thickness = deformableOfNode(row.node[0]).collision.thickness;
+        const Quat orientation = bullet.orientation(row.body);
+        const Vec3 local = orientation.conjugate() * (nodes.position[row.node[0]] - bullet.position(row.body));
+        const geometry::ShapeDistance d =
+            geometry::distanceToShape(*rigidShapes[row.body], local, thickness + std::max(row.startGap, 0.0) + thickness);
+        row.normal = orientation * d.normal;
+        row.offset = orientation * (d.surfacePoint + thickness * d.normal);  // as detection puts it
+        row.gap = d.distance - thickness;
+        continue;
+      }
       Vec3 moved = Vec3::Zero();
       for (int k = 0; k < 4; ++k)
         moved += row.coefficient[k] * (nodes.position[row.node[k]] - stepStartPositions[row.node[k]]);
@@ -355,6 +370,7 @@ struct World::Impl final : bullet::SolverHooks {
     bullet.loadRigidProperties(rigid);
     rows.prepare(nodes, rigid, settings.gravity, h, settings.solver.baumgarte / h, settings.solver.contactSlop);
     bool anyRows = false;
+    for (ContactRow& row : rows.contacts) row.inDirectBlock = row.frictionInBlock = false;  // decided per substep
     for (DirectBlock& block : directBlocks) {
       block.addContacts(rows, rigid, settings.solver.contactSlop);
       anyRows |= block.scalarRowCount() > 0;
@@ -391,19 +407,23 @@ struct World::Impl final : bullet::SolverHooks {
     for (size_t d = 0; d < deformables.size(); ++d) {
       if (root(static_cast<int32_t>(d)) != static_cast<int32_t>(d)) continue;
       std::vector<DirectBlock::NodeRange> ranges;
-      bool forced = false, allowed = true, elastic = false;
+      // Ropes (no faces, no tetrahedra) are chains: their block's factorisation costs time linear
+      // in their length, so they are direct at any length. Surfaces and solids fill in.
+      bool forced = false, allowed = true, elastic = false, chains = true;
       for (size_t member = 0; member < deformables.size(); ++member) {
         if (root(static_cast<int32_t>(member)) != static_cast<int32_t>(d)) continue;
         const DeformableRecord& record = deformables[member];
         forced |= record.rowSolver == RowSolverKind::Direct;
         allowed &= record.rowSolver != RowSolverKind::Iterative;
         elastic |= record.implicitStep;
+        chains &= record.restMesh.triangles.empty() && record.restMesh.tetrahedra.empty();
         ranges.push_back({record.firstNode, record.nodeCount});
       }
       if (!allowed) continue;
-      DirectBlock block(std::move(ranges));
+      DirectBlock block(std::move(ranges), chains);
       block.collectRows(rows);
-      if (!elastic && (block.scalarRowCount() == 0 || (!forced && block.scalarRowCount() > kAutoDirectRowLimit))) continue;
+      if (!elastic && (block.scalarRowCount() == 0 || (!forced && !chains && block.scalarRowCount() > kAutoDirectRowLimit)))
+        continue;
       block.claimRows(rows);
       directBlocks.push_back(std::move(block));
     }
@@ -468,7 +488,10 @@ struct World::Impl final : bullet::SolverHooks {
     SolverContext ctx = context();
     SweepStats stats;
     rows.sweep(ctx, settings.solver.friction, stats);
-    for (DirectBlock& block : directBlocks) block.solve(rows, ctx, stats);
+    for (DirectBlock& block : directBlocks) {
+      block.solve(rows, ctx, stats);
+      block.solveFriction(rows, ctx, settings.solver.friction, stats);
+    }
     // Contacts among deformables couple in crowds (a cloth folded on itself); they are cheap
     // next to a block, so they get more passes than those with rigid bodies.
     if (!directBlocks.empty())
@@ -572,6 +595,44 @@ struct World::Impl final : bullet::SolverHooks {
     const ImpactZoneStats stats = separateByImpactZones(collisionSurfaces(), stepStartPositions, nodes, h);
     report.impactZones = stats.zones;
     report.impactZoneNodes = stats.zoneNodes;
+  }
+
+  // Rows left violated beyond the report's thresholds (report.h): the worst of each kind per
+  // deformable, named. Nothing is allocated while every row holds.
+  void reportViolatedRows() {
+    report.violations.clear();
+    for (size_t d = 0; d < deformables.size(); ++d) {
+      const DeformableRecord& body = deformables[d];
+      const auto inBody = [&](int32_t node) { return node >= body.firstNode && node < body.firstNode + body.nodeCount; };
+      RowViolation worstAnchor{RowViolation::Kind::AnchorGap, -1, kAnchorGapWarning, {}};
+      for (size_t a = 0; a < rows.anchors.size(); ++a) {
+        const AnchorRow& row = rows.anchors[a];
+        if (!inBody(row.node[0])) continue;
+        const double gap = (row.deformablePoint(nodes.position) -
+                            (bullet.position(row.body) + bullet.orientation(row.body) * row.localPoint)).norm();
+        if (!(gap <= worstAnchor.value)) worstAnchor = {RowViolation::Kind::AnchorGap, static_cast<int>(a), gap, {}};
+      }
+      if (worstAnchor.index >= 0) {
+        const AnchorRow& row = rows.anchors[worstAnchor.index];
+        worstAnchor.message = "anchor " + std::to_string(worstAnchor.index) + " of deformable '" + body.name +
+                              "' to rigid body '" + rigidNames[row.body] + "' is " + formatNumber(worstAnchor.value) +
+                              " m apart";
+        report.violations.push_back(std::move(worstAnchor));
+      }
+      RowViolation worstEdge{RowViolation::Kind::EdgeStretch, -1, kEdgeStretchWarning, {}};
+      int edge = 0;
+      for (const InextensibilityRow& row : rows.inextensibility) {
+        if (!inBody(row.node[0])) continue;
+        const double strain = (nodes.position[row.node[1]] - nodes.position[row.node[0]]).norm() / row.restLength - 1.0;
+        if (!(strain <= worstEdge.value)) worstEdge = {RowViolation::Kind::EdgeStretch, edge, strain, {}};
+        ++edge;
+      }
+      if (worstEdge.index >= 0) {
+        worstEdge.message = "inextensible edge " + std::to_string(worstEdge.index) + " of deformable '" + body.name +
+                            "' is stretched " + formatNumber(100.0 * worstEdge.value) + " %";
+        report.violations.push_back(std::move(worstEdge));
+      }
+    }
   }
 
   // A non-finite or absurdly fast state means the step diverged: say which body, and stop.

@@ -231,9 +231,11 @@ TEST(Contact, BoxLiftedOffAHammockLeavesTheClothBehind) {
     const double acceleration = (world.rigidLinearVelocity(box).y() - before) / kStep;
     EXPECT_NEAR(acceleration, 3 * kGravity, 0.01 * kGravity) << "step " << step;
   }
-  // It went up over a metre; the cloth relaxed a few centimetres, no more.
+  // It went up over a metre; the cloth, unloaded, springs back by about its sag under the box
+  // (10–11 cm; the contacts' friction arms decide the last centimetre), no more: dragged along,
+  // it would rise with the box.
   EXPECT_GT(world.rigidPosition(box).y() - heightBefore, 1.0);
-  EXPECT_LT(world.nodePositions(hammock)[n * n / 2].y() - clothBefore, 0.1);
+  EXPECT_LT(world.nodePositions(hammock)[n * n / 2].y() - clothBefore, 0.12);
 }
 
 // ---- A corner into a coarse face ----------------------------------------------------------

@@ -119,3 +119,68 @@ TEST(HangingRope, ReportsStagesRowsAndConvergence) {
 
 }  // namespace
 }  // namespace tandem
+
+namespace tandem {
+namespace {
+
+// A rope whose rows are too weak for its load is torn on purpose: the step still succeeds, and
+// the report names the violated row (anchor gap or edge stretch) with its deformable and body.
+// `edgeForce` and `anchorForce` bound the rope's edges and its anchor to a 10 kg box (N).
+std::vector<RowViolation> violationsOfWeakRope(double edgeForce, double anchorForce) {
+  World world;
+  DeformableDesc rope;
+  rope.name = "weak rope";
+  rope.mesh = *makeRope({0, 2, 0}, {0, 1, 0}, 11, 0.1);
+  rope.inextensibility.enabled = true;
+  rope.inextensibility.maxForce = edgeForce;
+  const DeformableId ropeId = *world.addDeformable(rope);
+  RigidBodyDesc box;
+  box.name = "heavy box";
+  box.shape = RigidShape::box({0.1, 0.1, 0.1});
+  box.mass = 10.0;
+  box.position = {0, 0.9, 0};
+  const RigidBodyId boxId = *world.addRigidBody(box);
+  EXPECT_TRUE(world.addFixedPoint(ropeId, 0, {0, 2, 0}).ok());
+  AnchorDesc anchor = AnchorDesc::node(ropeId, 10, boxId);
+  anchor.maxForce = anchorForce;
+  EXPECT_TRUE(world.addAnchor(anchor).ok());
+  std::vector<RowViolation> seen;
+  for (int step = 0; step < 60; ++step) {
+    EXPECT_TRUE(world.step(kStep).ok());
+    for (const RowViolation& v : world.lastReport().violations) seen.push_back(v);
+  }
+  return seen;
+}
+
+TEST(HangingRope, ATornRopeIsReportedNamingItsRows) {
+  // Edges bounded at 2 N under a 98 N load: they stretch past 10 %.
+  const std::vector<RowViolation> edges = violationsOfWeakRope(2.0, kUnbounded);
+  ASSERT_FALSE(edges.empty());
+  for (const RowViolation& v : edges) {
+    EXPECT_EQ(v.kind, RowViolation::Kind::EdgeStretch) << v.message;
+    EXPECT_GT(v.value, kEdgeStretchWarning);
+    EXPECT_NE(v.message.find("'weak rope'"), std::string::npos) << v.message;
+  }
+  // An anchor bounded at 20 N lets the box fall away from the rope's end.
+  const std::vector<RowViolation> anchors = violationsOfWeakRope(kUnbounded, 20.0);
+  ASSERT_FALSE(anchors.empty());
+  for (const RowViolation& v : anchors) {
+    EXPECT_EQ(v.kind, RowViolation::Kind::AnchorGap) << v.message;
+    EXPECT_GT(v.value, kAnchorGapWarning);
+    EXPECT_NE(v.message.find("'weak rope'"), std::string::npos) << v.message;
+    EXPECT_NE(v.message.find("'heavy box'"), std::string::npos) << v.message;
+  }
+}
+
+// A rope that holds its load reports nothing.
+TEST(HangingRope, ARopeThatHoldsReportsNoViolation) {
+  World world;
+  ASSERT_TRUE(findBuiltinScene("hanging_rope")->build(world).ok());
+  for (int step = 0; step < 120; ++step) {
+    ASSERT_TRUE(world.step(kStep).ok());
+    EXPECT_TRUE(world.lastReport().violations.empty()) << world.lastReport().violations.front().message;
+  }
+}
+
+}  // namespace
+}  // namespace tandem

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -15,6 +16,19 @@ enum class RowType { FixedPoint, Anchor, Inextensibility, Bending, Contact, Fric
 inline constexpr std::array<std::string_view, static_cast<size_t>(RowType::Count)> kRowTypeNames{
     "fixed point", "anchor", "inextensibility", "bending", "contact", "friction", "grab"};
 
+// A row the solve left violated beyond what a user would call holding, at the end of a step: an
+// anchor whose two points are more than kAnchorGapWarning apart, an inextensible edge stretched
+// more than kEdgeStretchWarning. The step still succeeds; the report (and `tandem run`) says so.
+inline constexpr double kAnchorGapWarning = 0.01;  // m
+inline constexpr double kEdgeStretchWarning = 0.10;
+struct RowViolation {
+  enum class Kind { AnchorGap, EdgeStretch };
+  Kind kind = Kind::AnchorGap;
+  int index = 0;        // the anchor's id, or the edge's index among the deformable's inextensible edges
+  double value = 0.0;   // m apart (anchor), or strain (edge)
+  std::string message;  // names the deformable, the body and the row
+};
+
 struct StepReport {
   std::array<double, static_cast<size_t>(Stage::Count)> stageSeconds{};
   std::array<int, static_cast<size_t>(RowType::Count)> rowCounts{};  // scalar rows per type
@@ -25,6 +39,8 @@ struct StepReport {
   // Groups of nodes moved rigidly at the step's end because their surfaces would have crossed.
   int impactZones = 0;
   int impactZoneNodes = 0;
+  // The worst violated row of each kind per deformable, at the step's end (empty when all hold).
+  std::vector<RowViolation> violations;
   double totalSeconds = 0.0;
 
   int totalRows() const {

@@ -163,7 +163,8 @@ struct MassSpringSettings {
 // bounds) are solved in each sweep. Direct: exactly, as one block (sparse LDLᵀ factorised once
 // per step): rigid-grade ropes and attachments at any mass ratio. Iterative: by the projected
 // Gauss-Seidel sweep like every other row, cheaper per sweep for large cloths but slow to
-// converge when light nodes hold heavy bodies. Auto: direct up to kAutoDirectRowLimit rows.
+// converge when light nodes hold heavy bodies. Auto: direct for ropes (chains, whose block costs
+// time linear in their length) at any length; for surfaces and solids up to kAutoDirectRowLimit rows.
 enum class RowSolverKind { Auto, Direct, Iterative };
 inline constexpr int kAutoDirectRowLimit = 1500;
 
@@ -293,6 +294,7 @@ class World {
   Vec3 rigidLinearVelocity(RigidBodyId body) const;
   Vec3 rigidAngularVelocity(RigidBodyId body) const;
   double rigidMass(RigidBodyId body) const;  // 0 for static and kinematic bodies
+  Mat3 rigidInertia(RigidBodyId body) const;  // kg·m², world frame, about the centre of mass; 0 if not dynamic
   bool rigidIsAwake(RigidBodyId body) const;
   void putRigidToSleep(RigidBodyId body);
   void setRigidCanSleep(RigidBodyId body, bool canSleep);

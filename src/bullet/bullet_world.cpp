@@ -4,6 +4,7 @@
 #include <BulletCollision/CollisionDispatch/btSimulationIslandManager.h>
 #include <LinearMath/btConvexHullComputer.h>
 
+#include <algorithm>
 #include <cassert>
 #include <vector>
 
@@ -152,6 +153,11 @@ struct BulletWorld::Impl {
   std::vector<std::vector<btScalar>> meshVertices;  // kept alive for Bullet's triangle meshes
   std::vector<std::vector<int>> meshIndices;
   std::vector<std::unique_ptr<btTriangleIndexVertexArray>> meshArrays;
+  struct PairImpulse {
+    int bodyA, bodyB;  // bodyA < bodyB
+    double impulse;    // N·s, summed over the step's solves
+  };
+  std::vector<PairImpulse> pairImpulses;  // reused from step to step
 
   ~Impl() {
     for (int i = world.getNumConstraints() - 1; i >= 0; --i) world.removeConstraint(world.getConstraint(i));
@@ -280,6 +286,7 @@ void BulletWorld::solve(double timeStep, int iterations, SolverHooks& hooks) {
   m_impl->solver.hooks = &hooks;
   m_impl->world.solveAll(timeStep);
   m_impl->solver.hooks = nullptr;
+  addContactImpulses();
 }
 
 void BulletWorld::integrate(double timeStep) { m_impl->world.finish(timeStep); }
@@ -338,6 +345,11 @@ double BulletWorld::mass(int body) const {
   const double inverse = m_impl->bodies[body]->getInvMass();
   return inverse > 0 ? 1.0 / inverse : 0.0;
 }
+Mat3 BulletWorld::inertia(int body) const {
+  const btRigidBody& b = *m_impl->bodies[body];
+  if (b.getInvMass() == 0) return Mat3::Zero();
+  return fromBt(b.getInvInertiaTensorWorld()).inverse();
+}
 bool BulletWorld::isAwake(int body) const { return m_impl->bodies[body]->isActive(); }
 bool BulletWorld::isDynamic(int body) const { return m_impl->bodies[body]->getInvMass() > 0; }
 void BulletWorld::wake(int body) {
@@ -362,19 +374,35 @@ void BulletWorld::setKinematicTarget(int body, const Vec3& position, const Quat&
   m_impl->motionStates[body]->setWorldTransform(btTransform(toBt(orientation.normalized()), toBt(position)));
 }
 
-double BulletWorld::contactImpulse(int bodyA, int bodyB) const {
-  const btCollisionObject* a = m_impl->bodies[bodyA].get();
-  const btCollisionObject* b = m_impl->bodies[bodyB].get();
-  double total = 0.0;
+void BulletWorld::clearContactImpulses() { m_impl->pairImpulses.clear(); }
+
+// After each solve: its contact impulses added per pair of bodies (a step of n substeps solves
+// n times; what it reports is their sum).
+void BulletWorld::addContactImpulses() {
   btDispatcher* dispatcher = m_impl->world.getDispatcher();
   for (int m = 0; m < dispatcher->getNumManifolds(); ++m) {
     const btPersistentManifold* manifold = dispatcher->getManifoldByIndexInternal(m);
-    const bool match = (manifold->getBody0() == a && manifold->getBody1() == b) ||
-                       (manifold->getBody0() == b && manifold->getBody1() == a);
-    if (!match) continue;
+    double total = 0.0;
     for (int p = 0; p < manifold->getNumContacts(); ++p) total += manifold->getContactPoint(p).m_appliedImpulse;
+    if (total == 0.0) continue;
+    const int a = manifold->getBody0()->getUserIndex(), b = manifold->getBody1()->getUserIndex();
+    const int low = std::min(a, b), high = std::max(a, b);
+    auto& pairs = m_impl->pairImpulses;
+    auto pair = std::find_if(pairs.begin(), pairs.end(), [&](const Impl::PairImpulse& q) {
+      return q.bodyA == low && q.bodyB == high;
+    });
+    if (pair == pairs.end())
+      pairs.push_back({low, high, total});
+    else
+      pair->impulse += total;
   }
-  return total;
+}
+
+double BulletWorld::contactImpulse(int bodyA, int bodyB) const {
+  const int low = std::min(bodyA, bodyB), high = std::max(bodyA, bodyB);
+  for (const Impl::PairImpulse& pair : m_impl->pairImpulses)
+    if (pair.bodyA == low && pair.bodyB == high) return pair.impulse;
+  return 0.0;
 }
 
 int BulletWorld::manifoldCount() const { return m_impl->world.getDispatcher()->getNumManifolds(); }

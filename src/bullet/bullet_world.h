@@ -62,6 +62,7 @@ class BulletWorld {
   Vec3 linearVelocity(int body) const;
   Vec3 angularVelocity(int body) const;
   double mass(int body) const;
+  Mat3 inertia(int body) const;  // world frame; zero for static and kinematic bodies
   bool isAwake(int body) const;
   bool isDynamic(int body) const;
   void wake(int body);
@@ -69,7 +70,8 @@ class BulletWorld {
   void putToSleep(int body);
   void setCanSleep(int body, bool canSleep);
   void setKinematicTarget(int body, const Vec3& position, const Quat& orientation);
-  double contactImpulse(int bodyA, int bodyB) const;
+  double contactImpulse(int bodyA, int bodyB) const;  // N·s over the step, summed over its solves
+  void clearContactImpulses();                        // at the start of a step
   int manifoldCount() const;
   int jointCount() const;
   struct RayHit {
@@ -84,6 +86,7 @@ class BulletWorld {
  private:
   struct Impl;
   std::unique_ptr<Impl> m_impl;
+  void addContactImpulses();
 };
 
 }  // namespace tandem::bullet

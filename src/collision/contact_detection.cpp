@@ -101,8 +101,12 @@ struct Detector {
           geometry::distanceToShape(*shape.shape, rotation.transpose() * (x - shape.position), surface.thickness + margin);
       const double gap = d.distance - surface.thickness;
       if (gap > margin) continue;
-      addRigidContact(surface, {n, n, n}, {1, 0, 0}, 1, body, shape.position + rotation * d.surfacePoint,
-                      rotation * d.normal, gap, featureKey(Feature::NodeRigid, n, body));
+      // The body's point is where the node's centre rests when touching (the surface moved out by
+      // the thickness): friction holds the node to that point's velocity, so a rope of thickness
+      // t wound on a wheel of radius r rolls at (r + t) ω, as its centre line does.
+      addRigidContact(surface, {n, n, n}, {1, 0, 0}, 1, body,
+                      shape.position + rotation * (d.surfacePoint + surface.thickness * d.normal), rotation * d.normal,
+                      gap, featureKey(Feature::NodeRigid, n, body));
     }
   }
 

@@ -4,8 +4,13 @@
 // Derivation (paper §4.3–4.4, exact linearisation). The contact point on side A is
 // p_A = Σ wₖ xₖ over its nodes (a node, or a point of a face with barycentric weights); on
 // side B it is a point fixed in a rigid body, p_B = c + R r, or Σ uₖ xₖ over the other
-// surface's nodes. n is the unit normal pointing from B to A; g the gap at the start of the
-// step minus both sides' thickness. Writing every node entry with a signed coefficient cₖ
+// surface's nodes. For a node against a shape, r is where the node's centre rests when
+// touching (the surface moved out by the thickness), so friction holds the node to that
+// point's velocity: a rope of thickness t rolls on a wheel at (r + t) ω, as its centre line
+// does. (Along n this changes nothing: (r + t n) × n = r × n.) n is the unit normal pointing
+// from B to A; g the gap at the start of the substep (found at the step's start and moved on by
+// both sides' motion since; a node against a shape is measured again) minus both sides'
+// thickness. Writing every node entry with a signed coefficient cₖ
 // (+wₖ on side A, −uₖ on side B):
 //
 //   C  = n · (p_A − p_B) − thickness ≥ 0
@@ -68,6 +73,7 @@ struct ContactRow {
   double stepNormalImpulse = 0.0;          // summed over the step's substeps: what is reported
   Vec3 stepFrictionImpulse = Vec3::Zero();
   bool inDirectBlock = false;  // its normal row is solved by a direct block
+  bool frictionInBlock = false;  // and its friction too, in the block's metric (solver/direct_block.h)
   bool releasedFromBlock = false;  // a block let it go this step (it would have pulled)
   bool releasedLastStep = false;   // the same feature was let go last step
 

@@ -87,7 +87,8 @@ struct ConstraintRows {
       if (!row.inDirectBlock) solveAnchor(row, ctx, stats);
     for (ContactRow& row : contacts)
       if (!row.inDirectBlock) solveContactNormal(row, ctx, stats);
-    for (ContactRow& row : contacts) solveContactFriction(row, friction, ctx, stats);
+    for (ContactRow& row : contacts)
+      if (!row.frictionInBlock) solveContactFriction(row, friction, ctx, stats);
   }
 
   // The contacts no direct block holds, once more after the blocks: a block knows nothing of

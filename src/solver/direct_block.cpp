@@ -16,12 +16,14 @@ constexpr int kMaxReleaseRounds = 3;
 constexpr Eigen::Index kLowRankReleases = 32;
 // h² K_g per edge is at most this multiple of its lighter node's mass.
 constexpr double kMaxStiffnessToMass = 100;
+// Contacts whose friction a block solves in its own metric (two KKT solves each per step).
+constexpr size_t kMaxFrictionContacts = 32;
 
 bool isUnbounded(double maxForce) { return std::isinf(maxForce); }
 
 }  // namespace
 
-DirectBlock::DirectBlock(std::vector<NodeRange> ranges) : m_ranges(std::move(ranges)) {
+DirectBlock::DirectBlock(std::vector<NodeRange> ranges, bool chains) : m_ranges(std::move(ranges)), m_chains(chains) {
   for (const NodeRange& range : m_ranges) m_nodeCount += range.count;
 }
 
@@ -89,6 +91,7 @@ void DirectBlock::addContacts(ConstraintRows& rows, std::span<const RigidSolverS
         return joins(row) && rigid[row.body].inverseMass > 0.0;
       }))
     return;
+  size_t frictionContacts = 0;
   for (size_t i = 0; i < rows.contacts.size(); ++i) {
     ContactRow& row = rows.contacts[i];
     if (!joins(row)) continue;
@@ -102,6 +105,11 @@ void DirectBlock::addContacts(ConstraintRows& rows, std::span<const RigidSolverS
     }
     row.inDirectBlock = true;
     row.lambdaNormal = 0.0;
+    if (m_chains && row.friction > 0.0 && frictionContacts < kMaxFrictionContacts) {
+      row.frictionInBlock = true;
+      row.lambdaTangent.setZero();  // solved afresh each step in the block's metric, like its rows
+      ++frictionContacts;
+    }
     if (std::find(m_bodies.begin(), m_bodies.end(), row.body) == m_bodies.end()) m_bodies.push_back(row.body);
     m_rows.push_back({RowType::Contact, static_cast<int32_t>(i), 0});
   }
@@ -175,12 +183,16 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
     const InextensibilityRow& row = rows.inextensibility[ref.index];
     const bool taut = row.lambda < 0 && row.effectiveMass != 0.0;
     const Vec3 n = row.jacobian[1];
-    // Bounded at kMaxStiffnessToMass times the lighter node's mass: enough to hold the sideways
-    // modes still, and it keeps the huge impulses redundant rows can carry (a cloth's
-    // over-determined rows absorb small inconsistencies in their errors as a null-space impulse
-    // that moves nothing) from turning into a huge stiffness.
+    // In surfaces and solids, bounded at kMaxStiffnessToMass times the lighter node's mass:
+    // enough to hold the sideways modes still, and it keeps the huge impulses redundant rows can
+    // carry (a cloth's over-determined rows absorb small inconsistencies in their errors as a
+    // null-space impulse that moves nothing) from turning into a huge stiffness. A chain's rows
+    // are not redundant, and its stiffness must be whole: a 500 kg box on 1 g nodes needs
+    // 3,000 times the bound, or the rope's nodes, free to move sideways to first order on a
+    // straight rope, whip round and tear it (heavy pendulum, docs/solver.md).
     const double lighter = 1.0 / std::max(nodes.inverseMass[row.node[0]], nodes.inverseMass[row.node[1]]);
-    const double stiffness = std::min(timeStep * -row.lambda / row.restLength, kMaxStiffnessToMass * lighter);
+    const double tension = timeStep * -row.lambda / row.restLength;
+    const double stiffness = m_chains ? tension : std::min(tension, kMaxStiffnessToMass * lighter);
     const Mat3 g = taut ? Mat3(stiffness * (Mat3::Identity() - n * n.transpose())) : Mat3::Zero();
     const std::array<int32_t, 2> dof{nodeDof(row.node[0]), nodeDof(row.node[1])};
     for (int a = 0; a < 2; ++a)
@@ -290,6 +302,7 @@ void DirectBlock::factorise() {
   SparseMatrix kkt(size, size);
   kkt.setFromTriplets(m_entries.begin(), m_entries.end());
   m_releasedRows.clear();  // in the matrix now
+  m_frictionStale = true;
   // The ordering and symbolic factorisation are redone only when the sparsity pattern changes
   // (pinned nodes, movable bodies, the contacts in the block).
   kkt.makeCompressed();
@@ -312,6 +325,7 @@ void DirectBlock::factorise() {
 // a small dense solve per solve instead of a refactorisation per round of releases. Past
 // kLowRankReleases rows the columns would cost more than a factorisation, which is redone.
 void DirectBlock::release(const std::vector<int32_t>& released) {
+  m_frictionStale = true;
   for (int32_t row : released) {
     m_released[row] = true;
     for (size_t e = m_rowEntries[row].first; e + 1 < m_rowEntries[row].second; ++e)
@@ -450,6 +464,7 @@ void DirectBlock::solve(ConstraintRows& rows, SolverContext& ctx, SweepStats& st
   for (size_t r = m_persistentRows; r < m_rows.size(); ++r)
     if (m_released[r]) {
       rows.contacts[m_rows[r].index].inDirectBlock = false;
+      rows.contacts[m_rows[r].index].frictionInBlock = false;
       rows.contacts[m_rows[r].index].releasedFromBlock = true;
     }
   for (int32_t r = 0; r < rowCount; ++r)
@@ -469,7 +484,13 @@ void DirectBlock::solve(ConstraintRows& rows, SolverContext& ctx, SweepStats& st
     body.linearVelocity += m_inverseMass[m_bodyDof[b]] * m_impulse.segment<3>(m_bodyDof[b]);
     body.angularVelocity += m_bodyInverseInertia[b] * m_impulse.segment<3>(m_bodyDof[b] + 3);
   }
-  for (int32_t r = 0; r < rowCount; ++r) {
+  addRowImpulses(rows, deltaLambda, ctx);
+  for (int32_t r = 0; r < rowCount; ++r) stats.add(deltaLambda[r]);
+}
+
+// Δλ added to the block's rows, and their rigid bodies' share to the per-body impulse report.
+void DirectBlock::addRowImpulses(ConstraintRows& rows, const Eigen::VectorXd& deltaLambda, SolverContext& ctx) const {
+  for (int32_t r = 0; r < scalarRowCount(); ++r) {
     const double delta = deltaLambda[r];
     const BlockRowRef& ref = m_rows[r];
     switch (ref.type) {
@@ -498,7 +519,109 @@ void DirectBlock::solve(ConstraintRows& rows, SolverContext& ctx, SweepStats& st
       }
       default: break;
     }
-    stats.add(delta);
+  }
+}
+
+Eigen::VectorXd DirectBlock::impulseOnDofs(const ContactRow& row, const Vec3& axis) const {
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(m_dofCount);
+  for (int k = 0; k < 4; ++k) {
+    const int32_t local = localNode(row.node[k]);
+    if (row.coefficient[k] != 0.0 && local >= 0 && m_nodeDof[local] >= 0)
+      f.segment<3>(m_nodeDof[local]) += row.coefficient[k] * axis;
+  }
+  const auto body = std::find(m_bodies.begin(), m_bodies.end(), row.body);
+  if (row.body >= 0 && body != m_bodies.end() && m_bodyDof[body - m_bodies.begin()] >= 0) {
+    const int32_t dof = m_bodyDof[body - m_bodies.begin()];
+    f.segment<3>(dof) -= axis;
+    f.segment<3>(dof + 3) += axis.cross(row.offset);
+  }
+  return f;
+}
+
+void DirectBlock::computeFrictionResponses(const ConstraintRows& rows) {
+  m_friction.clear();
+  m_frictionStale = false;
+  const int32_t rowCount = scalarRowCount();
+  for (size_t r = m_persistentRows; r < m_rows.size(); ++r) {
+    const ContactRow& row = rows.contacts[m_rows[r].index];
+    if (!row.frictionInBlock || m_released[r]) continue;
+    FrictionResponse response;
+    response.row = static_cast<int32_t>(r);
+    const std::array<Vec3, 2> tangents{row.tangent1, row.tangent2};
+    std::array<Eigen::VectorXd, 2> applied;
+    for (int t = 0; t < 2; ++t) {
+      applied[t] = impulseOnDofs(row, tangents[t]);
+      m_rhs.setZero(m_dofCount + rowCount);
+      m_rhs.head(m_dofCount) = applied[t];
+      m_solution = solveKkt(m_rhs);
+      // As in solve(): velocities from the impulses, M Δv = f + Jᵀ Δλ − h² K Δv (momentum-exact).
+      response.impulse[t] = -m_solution.tail(rowCount);
+      for (int32_t q = 0; q < rowCount; ++q)
+        if (m_released[q]) response.impulse[t][q] = 0.0;
+      const Eigen::VectorXd impulse = applied[t] + m_jacobianT * response.impulse[t] - m_stiffness * m_solution.head(m_dofCount);
+      response.velocity[t] = impulse.cwiseProduct(m_inverseMass);
+      for (size_t b = 0; b < m_bodies.size(); ++b)
+        if (m_bodyDof[b] >= 0)
+          response.velocity[t].segment<3>(m_bodyDof[b] + 3) = m_bodyInverseInertia[b] * impulse.segment<3>(m_bodyDof[b] + 3);
+    }
+    Eigen::Matrix2d w;
+    for (int i = 0; i < 2; ++i)
+      for (int j = 0; j < 2; ++j) w(i, j) = applied[i].dot(response.velocity[j]);
+    // A contact point that cannot slide relative to anything movable has no friction to solve.
+    if (w.determinant() <= 1e-18 * std::max(1.0, w.squaredNorm())) continue;
+    response.effectiveMass = w.inverse();
+    m_friction.push_back(std::move(response));
+  }
+}
+
+void DirectBlock::solveFriction(ConstraintRows& rows, SolverContext& ctx, FrictionModel model, SweepStats& stats) {
+  if (m_rows.empty() || !m_factorOk) return;
+  if (m_frictionStale) computeFrictionResponses(rows);
+  for (const FrictionResponse& response : m_friction) {
+    ContactRow& row = rows.contacts[m_rows[response.row].index];
+    const Vec3 v = contactRelativeVelocity(row, ctx);
+    const Eigen::Vector2d tangential(v.dot(row.tangent1), v.dot(row.tangent2));
+    const Eigen::Vector2d previous = row.lambdaTangent;
+    Eigen::Vector2d lambda = previous - response.effectiveMass * tangential;
+    const double bound = model == FrictionModel::Coulomb ? row.friction * row.lambdaNormal : row.pressureBound;
+    if (lambda.norm() > bound) lambda *= bound / lambda.norm();
+    Eigen::Vector2d delta = lambda - previous;
+    if (delta.isZero()) continue;
+    // The block's contacts react to the friction impulse through their normal rows; none may be
+    // left pulling (the block's active set only runs before this pass), so the step is shortened
+    // to the largest that keeps every contact's λₙ ≥ 0.
+    double fraction = 1.0;
+    for (size_t q = m_persistentRows; q < m_rows.size(); ++q) {
+      const double lambdaNormal = rows.contacts[m_rows[q].index].lambdaNormal;
+      const double change = delta[0] * response.impulse[0][static_cast<Eigen::Index>(q)] +
+                            delta[1] * response.impulse[1][static_cast<Eigen::Index>(q)];
+      if (change < 0.0 && lambdaNormal + fraction * change < 0.0) fraction = std::max(0.0, -lambdaNormal / change);
+    }
+    delta *= fraction;
+    row.lambdaTangent = previous + delta;
+    if (delta.isZero()) continue;
+    // The whole block moves; a body outside it (a static or kinematic one) takes nothing.
+    for (int32_t n = 0; n < m_nodeCount; ++n)
+      if (m_nodeDof[n] >= 0)
+        ctx.velocity[globalNode(n)] += delta[0] * response.velocity[0].segment<3>(m_nodeDof[n]) +
+                                       delta[1] * response.velocity[1].segment<3>(m_nodeDof[n]);
+    for (size_t b = 0; b < m_bodies.size(); ++b) {
+      if (m_bodyDof[b] < 0) continue;
+      RigidSolverState& body = ctx.rigid[m_bodies[b]];
+      body.linearVelocity += delta[0] * response.velocity[0].segment<3>(m_bodyDof[b]) +
+                             delta[1] * response.velocity[1].segment<3>(m_bodyDof[b]);
+      body.angularVelocity += delta[0] * response.velocity[0].segment<3>(m_bodyDof[b] + 3) +
+                              delta[1] * response.velocity[1].segment<3>(m_bodyDof[b] + 3);
+    }
+    if (row.body >= 0) {  // the friction's own share of the body's impulse, for the report
+      const Vec3 onBody = -(delta[0] * row.tangent1 + delta[1] * row.tangent2);
+      ctx.rigid[row.body].impulse += onBody;
+      ctx.rigid[row.body].angularImpulse += row.offset.cross(onBody);
+    }
+    const Eigen::VectorXd rowDelta = delta[0] * response.impulse[0] + delta[1] * response.impulse[1];
+    addRowImpulses(rows, rowDelta, ctx);
+    stats.add(delta[0]);
+    stats.add(delta[1]);
   }
 }
 

@@ -38,6 +38,20 @@
 // Velocities are set from M Δv = Jᵀ Δλ − h² (K_g + K_e) Δv after the solve, so momentum is exact
 // to rounding whatever the solve's own residual.
 //
+// Friction in the block's metric. A contact's friction competes with the block's rows: on a rope
+// over a wheel, a tangential impulse on one 0.2 g node is passed along the whole rope to the
+// loads at its ends. Swept as a PGS row with the node's own mass, each iteration moves the rope
+// by m_node v_slip and the block spreads it over kilograms: the rope slid over the wheel as if
+// frictionless. So in blocks of ropes, the friction of (up to kMaxFrictionContacts of) the
+// block's contacts is solved
+// after the block in each sweep, on the block's constrained response: for each tangent t the
+// KKT solve with the impulse Jₜᵀ gives the velocity change of every node and body with the
+// block's rows kept (and their Δλ), W = Jₜ Δv is the exact 2×2 inverse effective mass, and
+// Δλₜ = −W⁻¹ vₜ, clamped to the disc |λₜ| ≤ μ λₙ, moves the whole block at once (shortened so
+// that no contact of the block is left pulling). Surfaces keep their friction in the PGS sweep:
+// applied to a cloth draped over a pyramid, the block's friction pressed nodes off its contacts
+// 2.6 mm past their thickness into the shape (Shapes/ClothDrop/hull); docs/solver.md.
+//
 // The KKT matrix is symmetric quasi-definite, so a sparse LDLᵀ without pivoting (AMD ordering)
 // factorises it once per step; each sweep is one pair of triangular solves (plus a small dense
 // solve for the contacts let go, which drops their equations without refactorising, up to 32
@@ -72,7 +86,8 @@ class DirectBlock {
     int32_t first;
     int32_t count;
   };
-  explicit DirectBlock(std::vector<NodeRange> ranges);
+  // `chains`: its deformables are ropes (no redundant rows; see the geometric stiffness).
+  DirectBlock(std::vector<NodeRange> ranges, bool chains);
 
   // Finds every bilateral unbounded row on the body's nodes. Call again when rows are added.
   void collectRows(const ConstraintRows& rows);
@@ -104,11 +119,15 @@ class DirectBlock {
 
   // One exact solve of the block against the current velocities.
   void solve(ConstraintRows& rows, SolverContext& ctx, SweepStats& stats);
+  // Then one pass over the friction of its contacts, in its metric (above), bounded by the
+  // normal impulses that solve gave.
+  void solveFriction(ConstraintRows& rows, SolverContext& ctx, FrictionModel model, SweepStats& stats);
 
  private:
   using SparseMatrix = Eigen::SparseMatrix<double>;
 
   std::vector<NodeRange> m_ranges;
+  bool m_chains = false;
   int32_t m_nodeCount = 0;  // over all ranges
   std::vector<BlockRowRef> m_rows;  // the persistent rows first, then this step's contacts
   std::vector<int32_t> m_bodies;     // rigid bodies of the block's anchors, then of its contacts
@@ -137,6 +156,19 @@ class DirectBlock {
   Eigen::MatrixXd m_releasedColumns;         // A⁻¹ e_r for each of them
   Eigen::PartialPivLU<Eigen::MatrixXd> m_releasedCoupling;  // of those columns' released rows
 
+  // Per contact with friction in the block (its row index r), per tangent: the velocity change
+  // of the block's degrees of freedom and the Δλ of its rows for a unit tangential impulse.
+  struct FrictionResponse {
+    int32_t row = 0;
+    std::array<Eigen::VectorXd, 2> velocity, impulse;
+    Eigen::Matrix2d effectiveMass = Eigen::Matrix2d::Zero();  // W⁻¹
+  };
+  std::vector<FrictionResponse> m_friction;
+  bool m_frictionStale = true;  // the system changed since the responses were computed
+
+  void computeFrictionResponses(const ConstraintRows& rows);
+  void addRowImpulses(ConstraintRows& rows, const Eigen::VectorXd& deltaLambda, SolverContext& ctx) const;
+  Eigen::VectorXd impulseOnDofs(const ContactRow& row, const Vec3& axis) const;  // Jᵀ of a row along axis
   int32_t localNode(int32_t node) const;  // index among the block's nodes, or −1
   int32_t globalNode(int32_t local) const;
   void factorise();
