@@ -31,7 +31,7 @@ std::string writeFile(const std::string& name, const std::string& text) {
 
 TEST(SceneFile, EveryShippedSceneValidates) {
   int count = 0;
-  for (const auto& entry : fs::directory_iterator(TANDEM_SOURCE_DIR "/scenes")) {
+  for (const auto& entry : fs::recursive_directory_iterator(TANDEM_SOURCE_DIR "/scenes")) {
     if (entry.path().extension() != ".json") continue;
     ++count;
     Result<Scene> scene = loadScene(entry.path().string());
@@ -41,7 +41,29 @@ TEST(SceneFile, EveryShippedSceneValidates) {
     EXPECT_TRUE(built.ok()) << built.message();
     EXPECT_FALSE(scene->description.empty()) << entry.path();
   }
-  EXPECT_GE(count, 7);  // the paper's three and the small ones
+  EXPECT_GE(count, 7 + 11);  // the paper's three, the small ones, the solver's gauntlet
+}
+
+// A rope laid along a path and the solver's substeps are written and read back as given.
+TEST(SceneFile, RopeAlongAPathAndSubstepsRoundTrip) {
+  const std::string json = R"({"format": 1, "name": "over", "solver": {"iterations": 2, "substeps": 4},
+    "deformables": [{"name": "rope", "mesh": {"type": "rope", "path": [[-0.2, 0, 0], [-0.2, 1, 0], [0.2, 1, 0], [0.2, 0, 0]],
+    "nodes": 25}, "mass": 0.1}]})";
+  Result<Scene> scene = parseScene(json, "over.json", ".");
+  ASSERT_TRUE(scene.ok()) << scene.message();
+  EXPECT_EQ(scene->settings.solver.substeps, 4);
+  ASSERT_EQ(scene->deformables[0].mesh.path.size(), 4u);
+  Result<Scene> reread = parseScene(sceneToJson(*scene), "again.json", ".");
+  ASSERT_TRUE(reread.ok()) << reread.message();
+  EXPECT_EQ(sceneToJson(*reread), sceneToJson(*scene));
+  World world;
+  ASSERT_TRUE(buildScene(*reread, world).ok());
+  EXPECT_EQ(world.settings().solver.substeps, 4);
+  const auto x = world.nodePositions(DeformableId{0});
+  ASSERT_EQ(x.size(), 25u);
+  EXPECT_NEAR((x.front() - Vec3(-0.2, 0, 0)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((x.back() - Vec3(0.2, 0, 0)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((x[12] - Vec3(0, 1, 0)).norm(), 0.0, 1e-12);  // half way along the 2.4 m path
 }
 
 // A scene made through the API with one of everything the format has.
@@ -354,6 +376,13 @@ const std::vector<BadScene> kBadScenes{
      "/deformables/0/mesh/nodes: must be in [2, 100000], got 1"},
     {"zero_length_rope", scene("", R"({"name": "rope", "mesh": {"type": "rope", "start": [0, 1, 0], "end": [0, 1, 0], "nodes": 3}, "mass": 1})"),
      "/deformables/0/mesh: "},
+    {"rope_path_one_point", scene("", R"({"name": "rope", "mesh": {"type": "rope", "path": [[0, 0, 0]], "nodes": 3}, "mass": 1})"),
+     "/deformables/0/mesh/path: must be an array of 2 to 10000 [x, y, z] points"},
+    {"rope_path_not_a_point", scene("", R"({"name": "rope", "mesh": {"type": "rope", "path": [[0, 0, 0], [1, 0]], "nodes": 3}, "mass": 1})"),
+     "/deformables/0/mesh/path/1: "},
+    {"rope_path_zero_length", scene("", R"({"name": "rope", "mesh": {"type": "rope", "path": [[0, 1, 0], [0, 1, 0]], "nodes": 3}, "mass": 1})"),
+     "/deformables/0/mesh: "},
+    {"zero_substeps", R"({"format": 1, "name": "s", "solver": {"substeps": 0}})", "/solver/substeps: must be in [1, 1000], got 0"},
     {"mesh_type", scene("", R"({"name": "rope", "mesh": {"type": "string"}, "mass": 1})"),
      "/deformables/0/mesh/type: unknown value 'string'"},
     {"missing_obj", scene("", R"({"name": "sheet", "mesh": {"type": "obj", "file": "missing.obj"}, "mass": 1})"),

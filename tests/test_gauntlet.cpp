@@ -1,0 +1,40 @@
+// The solver's gauntlet (tests/gauntlet.h): each case at its scene's settings must meet every
+// bound; on failure the measures are printed with their bounds. Cases the solver does not pass
+// yet are DISABLED_, with what they measure today in docs/solver.md (run them with
+// --gtest_also_run_disabled_tests, or all settings with build/bench/gauntlet_study).
+#include "gauntlet.h"
+
+#include <gtest/gtest.h>
+
+namespace tandem::gauntlet {
+namespace {
+
+void expectPasses(const Outcome& result) {
+  EXPECT_TRUE(result.error.empty()) << result.scene << ": " << result.error;
+  for (const Measure& m : result.measures)
+    EXPECT_TRUE(m.pass()) << result.scene << ": " << m.name << " = " << m.value << ", must be in [" << m.low << ", "
+                          << m.high << "]";
+}
+
+TEST(Gauntlet, AtwoodMachineOverAHingedWheelDoesNotSlipAndAcceleratesAsAnalytic) { expectPasses(atwood()); }
+TEST(Gauntlet, CapstanHoldsBelowTheCapstanRatio) { expectPasses(capstan(true)); }
+TEST(Gauntlet, CapstanSlidesAboveTheCapstanRatio) { expectPasses(capstan(false)); }
+TEST(Gauntlet, HeavyPendulumOnALightRopeHoldsAndKeepsItsPeriod) { expectPasses(heavyPendulum()); }
+TEST(Gauntlet, LongRopeHoldsItsLoadUnderDefaultSettings) { expectPasses(longRope()); }
+TEST(Gauntlet, FreeSwingKeepsItsEnergy) { expectPasses(freeSwing()); }
+TEST(Gauntlet, DISABLED_LargeClothOnSphereStaysWithinItsStretchLimit) {
+  expectPasses(clothOnSphere("cloth_sphere.json", 3.0));
+  expectPasses(clothOnSphere("gauntlet/cloth_sphere_101.json", 2.0));
+}
+TEST(Gauntlet, DISABLED_FastProjectileDoesNotPassThroughCloth) {
+  expectPasses(projectile(20));
+  expectPasses(projectile(60));
+}
+TEST(Gauntlet, DISABLED_RopeOverWheelHoldsItsPivotAndComesToRest) { expectPasses(ropeWheel()); }
+TEST(Gauntlet, DISABLED_BodiesOnClothComeToRest) {
+  expectPasses(restOnCloth("hammock.json", "hammock"));
+  expectPasses(restOnCloth("gauntlet/box_stack_on_cloth.json", "hammock"));
+}
+
+}  // namespace
+}  // namespace tandem::gauntlet
