@@ -6,6 +6,7 @@
 
 #include "bullet/bullet_world.h"
 #include "collision/contact_detection.h"
+#include "collision/contact_motion.h"
 #include "collision/impact_zones.h"
 #include "format.h"
 #include "models/implicit_solve.h"
@@ -78,11 +79,8 @@ struct World::Impl final : bullet::SolverHooks {
   std::vector<Vec3> stepStartPositions;  // node positions before this step moved them
   std::vector<Vec3> stepStartVelocities;  // and their velocities before the models changed them
   std::vector<Vec3> modelVelocityChange;  // per node: what the models add over the step, per substep
-  struct RigidPose {
-    Vec3 centerOfMass;
-    Quat orientation;
-  };
-  std::vector<RigidPose> stepStartPoses;  // rigid bodies before this step moved them
+  std::vector<RigidPose> stepStartPoses;
+  std::vector<CollisionRigid> substepShapes;  // rigid shapes in their pose at a substep's start  // rigid bodies before this step moved them
   struct TargetPath {
     Vec3 from, to;  // where a moving target is at the step's start and end
   };
@@ -141,8 +139,7 @@ struct World::Impl final : bullet::SolverHooks {
   }
 
   // Substep s of n: the models' share of the velocity change, the moving targets at their
-  // substep's ends, and each contact's gap moved on by its two sides' motion since the step's
-  // start (the normal is kept; a rigid side's point turns with its body).
+  // substep's ends, and the contacts moved on (collision/contact_motion.h).
   void beginSubstep(int substep, int substeps) {
     if (substeps == 1) return;
     for (size_t i = 0; i < nodes.size(); ++i) nodes.velocity[i] += modelVelocityChange[i];
@@ -158,31 +155,11 @@ struct World::Impl final : bullet::SolverHooks {
       rows.grabs[r].target = path.from + to * (path.to - path.from);
     }
     if (substep == 0) return;
-    for (ContactRow& row : rows.contacts) {
-      // A node against a shape is measured again: its normal turns as it goes round a curved
-      // surface (held to the step's first tangent plane, a rope sliding round a post was
-      // pulled outwards, an infeasible set that stretched it).
-      if (row.isNodeOnRigid()) {
-        const double thickness = deformableOfNode(row.node[0]).collision.thickness;
-        const Quat orientation = bullet.orientation(row.body);
-        const Vec3 local = orientation.conjugate() * (nodes.position[row.node[0]] - bullet.position(row.body));
-        const geometry::ShapeDistance d =
-            geometry::distanceToShape(*rigidShapes[row.body], local, thickness + std::max(row.startGap, 0.0) + thickness);
-        row.normal = orientation * d.normal;
-        row.offset = orientation * (d.surfacePoint + thickness * d.normal);  // as detection puts it
-        row.gap = d.distance - thickness;
-        continue;
-      }
-      Vec3 moved = Vec3::Zero();
-      for (int k = 0; k < 4; ++k)
-        moved += row.coefficient[k] * (nodes.position[row.node[k]] - stepStartPositions[row.node[k]]);
-      if (row.body >= 0) {
-        const RigidPose& start = stepStartPoses[row.body];
-        row.offset = (bullet.orientation(row.body) * start.orientation.conjugate()) * row.startOffset;
-        moved -= bullet.position(row.body) - start.centerOfMass + row.offset - row.startOffset;
-      }
-      row.gap = row.startGap + row.normal.dot(moved);
-    }
+    substepShapes.resize(static_cast<size_t>(bullet.rigidBodyCount()));
+    for (int b = 0; b < bullet.rigidBodyCount(); ++b)
+      substepShapes[b] = {rigidShapes[b].get(), bullet.position(b), bullet.orientation(b), Vec3::Zero(), Vec3::Zero(), 0.0, 0.0};
+    moveContactsOn(rows.contacts, nodes.position, stepStartPositions, substepShapes, stepStartPoses,
+                   [&](int32_t node) { return deformableOfNode(node).collision.thickness; });
   }
 
   // After a substep's solve: its impulses added to the step's sums; after the last, the

@@ -1,4 +1,5 @@
 // Contacts and friction: cloth against rigid shapes, against cloth and against itself.
+#include "collision/contact_motion.h"
 #include "rigid_distance.h"
 
 #include <tandem/world.h>
@@ -239,6 +240,48 @@ TEST(Contact, BoxLiftedOffAHammockLeavesTheClothBehind) {
 }
 
 // ---- A corner into a coarse face ----------------------------------------------------------
+
+// ---- Contacts moving on within a step (collision/contact_motion.h) -------------------------
+
+// A node against a sphere is measured again in each substep: carried a quarter turn round it, its
+// normal, point and gap are the sphere's there. A face against a turning box keeps its normal;
+// its gap moves by the relative displacement, the box's point turned with it.
+TEST(Contact, ContactsMoveOnWithTheirTwoSidesWithinAStep) {
+  const geometry::CollisionShape sphere = collisionShape(RigidShape::sphere(0.5));
+  const geometry::CollisionShape box = collisionShape(RigidShape::box({0.5, 0.5, 0.5}));
+  const double thickness = 0.01;
+  std::vector<Vec3> start{{0, 0.52, 0}, {-0.1, 0.6, 0}, {0.1, 0.6, 0}, {0, 0.6, 0.1}};
+  std::vector<Vec3> now = start;
+  now[0] = {0.53, 0, 0};  // a quarter turn round the sphere, 3 cm out
+  for (int k = 1; k < 4; ++k) now[k] += Vec3(0, -0.04, 0);  // the face came 4 cm down
+  ContactRow onSphere;
+  onSphere.node = {0, 0, 0, 0};
+  onSphere.coefficient = {1, 0, 0, 0};
+  onSphere.body = 0;
+  onSphere.normal = Vec3::UnitY();
+  onSphere.startGap = onSphere.gap = 0.01;
+  ContactRow onBox;  // the box's top corner region under a face
+  onBox.node = {1, 2, 3, 1};
+  onBox.coefficient = {1.0 / 3, 1.0 / 3, 1.0 / 3, 0};
+  onBox.body = 1;
+  onBox.normal = Vec3::UnitY();
+  onBox.startOffset = onBox.offset = Vec3(0, 0.5, 0);
+  onBox.startGap = onBox.gap = 0.09;
+  std::vector<ContactRow> contacts{onSphere, onBox};
+  const Quat turn(Eigen::AngleAxisd(0.1, Vec3::UnitZ()));
+  const std::vector<RigidPose> startPoses{{Vec3::Zero(), Quat::Identity()}, {Vec3(0, 0, 0), Quat::Identity()}};
+  const std::vector<CollisionRigid> shapes{{&sphere, Vec3::Zero(), Quat::Identity(), Vec3::Zero(), Vec3::Zero(), 0, 0},
+                                           {&box, Vec3(0, 0.01, 0), turn, Vec3::Zero(), Vec3::Zero(), 0, 0}};
+  moveContactsOn(std::span<ContactRow>(contacts), now, start, shapes, startPoses, [&](int32_t) { return thickness; });
+  EXPECT_NEAR((contacts[0].normal - Vec3::UnitX()).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(contacts[0].gap, 0.53 - 0.5 - thickness, 1e-12);
+  EXPECT_NEAR((contacts[0].offset - Vec3(0.5 + thickness, 0, 0)).norm(), 0.0, 1e-12);
+  // Face: down 4 cm; the box up 1 cm and its point r = (0, 0.5, 0) turned by 0.1 rad about z.
+  const Vec3 turned = turn * Vec3(0, 0.5, 0);
+  EXPECT_NEAR((contacts[1].offset - turned).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(contacts[1].gap, 0.09 - 0.04 - 0.01 - (turned.y() - 0.5), 1e-12);
+  EXPECT_EQ(contacts[1].normal, Vec3::UnitY());
+}
 
 TEST(Contact, BoxCornerDoesNotPokeThroughACoarseFace) {
   World world;

@@ -148,16 +148,23 @@ inline void solveContactNormal(ContactRow& row, SolverContext& ctx, SweepStats& 
   stats.add(delta);
 }
 
-inline void solveContactFriction(ContactRow& row, FrictionModel model, SolverContext& ctx, SweepStats& stats) {
-  if (row.friction == 0.0 || row.tangentMass.isZero()) return;
+// The accumulated tangential impulse that stops the sliding, Δλ = −W⁻¹ vₜ for the 2×2
+// `tangentMass` W⁻¹ (the point's own, or a direct block's), clamped to the friction disc.
+inline Eigen::Vector2d frictionImpulse(const ContactRow& row, FrictionModel model, const Eigen::Matrix2d& tangentMass,
+                                       const SolverContext& ctx) {
   const Vec3 v = contactRelativeVelocity(row, ctx);
   const Eigen::Vector2d tangential(v.dot(row.tangent1), v.dot(row.tangent2));
-  const Eigen::Vector2d previous = row.lambdaTangent;
-  Eigen::Vector2d lambda = previous - row.tangentMass * tangential;
+  Eigen::Vector2d lambda = row.lambdaTangent - tangentMass * tangential;
   const double bound = model == FrictionModel::Coulomb ? row.friction * row.lambdaNormal : row.pressureBound;
   if (lambda.norm() > bound) lambda *= bound / lambda.norm();
-  row.lambdaTangent = lambda;
-  const Eigen::Vector2d delta = lambda - previous;
+  return lambda;
+}
+
+inline void solveContactFriction(ContactRow& row, FrictionModel model, SolverContext& ctx, SweepStats& stats) {
+  if (row.friction == 0.0 || row.tangentMass.isZero()) return;
+  const Eigen::Vector2d previous = row.lambdaTangent;
+  row.lambdaTangent = frictionImpulse(row, model, row.tangentMass, ctx);
+  const Eigen::Vector2d delta = row.lambdaTangent - previous;
   applyContactImpulse(row, delta[0] * row.tangent1 + delta[1] * row.tangent2, ctx);
   stats.add(delta[0]);
   stats.add(delta[1]);

@@ -579,13 +579,8 @@ void DirectBlock::solveFriction(ConstraintRows& rows, SolverContext& ctx, Fricti
   if (m_frictionStale) computeFrictionResponses(rows);
   for (const FrictionResponse& response : m_friction) {
     ContactRow& row = rows.contacts[m_rows[response.row].index];
-    const Vec3 v = contactRelativeVelocity(row, ctx);
-    const Eigen::Vector2d tangential(v.dot(row.tangent1), v.dot(row.tangent2));
     const Eigen::Vector2d previous = row.lambdaTangent;
-    Eigen::Vector2d lambda = previous - response.effectiveMass * tangential;
-    const double bound = model == FrictionModel::Coulomb ? row.friction * row.lambdaNormal : row.pressureBound;
-    if (lambda.norm() > bound) lambda *= bound / lambda.norm();
-    Eigen::Vector2d delta = lambda - previous;
+    Eigen::Vector2d delta = frictionImpulse(row, model, response.effectiveMass, ctx) - previous;
     if (delta.isZero()) continue;
     // The block's contacts react to the friction impulse through their normal rows; none may be
     // left pulling (the block's active set only runs before this pass), so the step is shortened
