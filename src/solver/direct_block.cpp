@@ -105,7 +105,8 @@ void DirectBlock::addContacts(ConstraintRows& rows, std::span<const RigidSolverS
     }
     row.inDirectBlock = true;
     row.lambdaNormal = 0.0;
-    if (m_chains && row.friction > 0.0 && frictionContacts < kMaxFrictionContacts) {
+    const bool frictionInMetric = m_chains || rigid[row.body].inverseMass > 0.0;  // see the header
+    if (frictionInMetric && row.friction > 0.0 && frictionContacts < kMaxFrictionContacts) {
       row.frictionInBlock = true;
       row.lambdaTangent.setZero();  // solved afresh each step in the block's metric, like its rows
       ++frictionContacts;

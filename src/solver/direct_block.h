@@ -42,15 +42,15 @@
 // over a wheel, a tangential impulse on one 0.2 g node is passed along the whole rope to the
 // loads at its ends. Swept as a PGS row with the node's own mass, each iteration moves the rope
 // by m_node v_slip and the block spreads it over kilograms: the rope slid over the wheel as if
-// frictionless. So in blocks of ropes, the friction of (up to kMaxFrictionContacts of) the
-// block's contacts is solved
+// frictionless. So the friction of (up to kMaxFrictionContacts of) a block's contacts with
+// dynamic bodies, and in blocks of ropes all of them, is solved
 // after the block in each sweep, on the block's constrained response: for each tangent t the
 // KKT solve with the impulse Jₜᵀ gives the velocity change of every node and body with the
 // block's rows kept (and their Δλ), W = Jₜ Δv is the exact 2×2 inverse effective mass, and
 // Δλₜ = −W⁻¹ vₜ, clamped to the disc |λₜ| ≤ μ λₙ, moves the whole block at once (shortened so
-// that no contact of the block is left pulling). Surfaces keep their friction in the PGS sweep:
-// applied to a cloth draped over a pyramid, the block's friction pressed nodes off its contacts
-// 2.6 mm past their thickness into the shape (Shapes/ClothDrop/hull); docs/solver.md.
+// that no contact of the block is left pulling). A surface's contacts with still shapes keep
+// their friction in the PGS sweep: applied to a cloth draped over a pyramid, the block's
+// friction pressed nodes 2.6 mm past their thickness into the shape (Shapes/ClothDrop/hull).
 //
 // The KKT matrix is symmetric quasi-definite, so a sparse LDLᵀ without pivoting (AMD ordering)
 // factorises it once per step; each sweep is one pair of triangular solves (plus a small dense
