@@ -32,6 +32,8 @@ using tandem::cli::nodeCount;
 using tandem::cli::overrideSolver;
 using tandem::cli::SceneInfo;
 
+constexpr long kMaxSteps = 10'000'000;  // 55 hours of a 20 ms step; each is timed and kept
+
 struct RunOptions {
   std::string scene;
   std::string record;
@@ -78,7 +80,13 @@ int run(const RunOptions& options) {
   if (!overrideSolver(world, options.iterations, options.substeps)) return 2;
   const double h = options.timeStep > 0 ? options.timeStep : scene->timeStep;
   const double seconds = options.seconds > 0 ? options.seconds : scene->duration;
-  const long steps = options.steps > 0 ? options.steps : std::max(1L, std::lround(seconds / h));
+  const double wanted = std::round(seconds / h);
+  if (options.steps == 0 && wanted > static_cast<double>(kMaxSteps)) {
+    std::fprintf(stderr, "tandem: %g s at h = %g s is %.3g steps; a run takes at most %ld (use a larger --dt or fewer --seconds)\n",
+                 seconds, h, wanted, kMaxSteps);
+    return 2;
+  }
+  const long steps = options.steps > 0 ? options.steps : std::max(1L, static_cast<long>(wanted));
   std::optional<tandem::StepRecorder> recorder;
   if (!options.record.empty()) {
     tandem::Result<tandem::StepRecorder> opened = tandem::StepRecorder::open(options.record, options.recordNodes);
@@ -195,6 +203,17 @@ void list() {
 
 }  // namespace
 
+// A number that is finite and > 0 (CLI11's ranges let NaN through: every comparison with it is
+// false).
+const CLI::Validator kFinitePositive(
+    [](std::string& text) {
+      double value = 0.0;
+      if (!CLI::detail::lexical_cast(text, value) || !std::isfinite(value) || value <= 0)
+        return std::string("must be a finite number > 0, got ") + text;
+      return std::string();
+    },
+    "POSITIVE");
+
 int main(int argc, char** argv) {
   CLI::App app{"Tandem: two-way coupled rigid and deformable bodies"};
   app.require_subcommand(1);
@@ -203,11 +222,12 @@ int main(int argc, char** argv) {
   CLI::App* runCommand = app.add_subcommand("run", "Run a scene headless and print what it simulated and how fast");
   runCommand->add_option("scene", options.scene, "A scene file (.json) or a built-in scene's name (see `tandem list`)")
       ->required();
-  auto* stepsOption = runCommand->add_option("--steps", options.steps, "Number of steps")->check(CLI::PositiveNumber);
+  auto* stepsOption =
+      runCommand->add_option("--steps", options.steps, "Number of steps")->check(CLI::Range(1L, kMaxSteps));
   runCommand->add_option("--seconds", options.seconds, "Simulated seconds (instead of --steps)")
-      ->check(CLI::PositiveNumber)
+      ->check(kFinitePositive)
       ->excludes(stepsOption);
-  runCommand->add_option("--dt", options.timeStep, "Time step in seconds")->check(CLI::Range(1e-6, 1.0));
+  runCommand->add_option("--dt", options.timeStep, "Time step in seconds")->check(kFinitePositive & CLI::Range(1e-6, 1.0));
   runCommand->add_option("--iterations", options.iterations, "Solver iterations K")->check(CLI::Range(1, 1000));
   runCommand->add_option("--substeps", options.substeps, "Solver substeps n per step")->check(CLI::Range(1, 1000));
   runCommand->add_flag("--report", options.report, "Print stage times, row counts and convergence");
