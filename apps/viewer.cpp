@@ -306,6 +306,7 @@ class Viewer {
     WorldSettings settings = m_world->settings();
     SolverSettings& solver = settings.solver;
     bool changed = ImGui::SliderInt("iterations K", &solver.iterations, 1, 50);
+    changed |= ImGui::SliderInt("substeps n", &solver.substeps, 1, 16);
     changed |= ImGui::SliderFloat("beta h", &m_baumgarte, 0.0f, 1.0f, "%.2f");
     changed |= ImGui::Checkbox("warm start", &solver.warmStart);
     int friction = solver.friction == FrictionModel::Coulomb ? 0 : 1;
