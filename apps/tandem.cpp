@@ -143,6 +143,12 @@ int run(const RunOptions& options) {
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (progress) std::printf("\n");
+  if (recorder) {
+    if (tandem::Status s = recorder->close(); !s) {
+      std::fprintf(stderr, "tandem: %s\n", s.message().c_str());
+      return 1;
+    }
+  }
 
   double sum = 0.0;
   for (double ms : stepMs) sum += ms;

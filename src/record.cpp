@@ -1,5 +1,8 @@
 #include <tandem/record.h>
 
+#include <cerrno>
+#include <cstring>
+
 namespace tandem {
 
 Result<StepRecorder> StepRecorder::open(const std::string& path, bool nodes) {
@@ -45,6 +48,16 @@ Status StepRecorder::write(const World& world) {
     }
   }
   if (std::ferror(f)) return Error{"record: writing '" + m_path + "' failed"};
+  return {};
+}
+
+Status StepRecorder::close() {
+  std::FILE* f = m_file.release();
+  if (!f) return Error{"record: '" + m_path + "' is already closed"};
+  const bool written = std::fflush(f) == 0 && !std::ferror(f);
+  const int error = errno;
+  if (std::fclose(f) != 0 || !written)
+    return Error{"record: writing '" + m_path + "' failed: " + std::strerror(written ? errno : error)};
   return {};
 }
 

@@ -26,6 +26,9 @@ class StepRecorder {
 
   // Appends the world's present state as the rows of its present step.
   Status write(const World& world);
+  // Writes out what is buffered and closes the file; a full disk or a failed write is reported
+  // here, so call it (the destructor closes without telling).
+  Status close();
 
  private:
   struct FileCloser {
