@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -179,6 +180,8 @@ Result<DeformableMesh> loadTetGen(const std::string& basePath, double density) {
 Result<DeformableMesh> loadObj(const std::string& path, double totalMass) {
   if (!(std::isfinite(totalMass) && totalMass > 0))
     return Error{path + ": total mass must be a positive number of kilograms, got " + formatNumber(totalMass)};
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error)) return Error{path + ": is a folder, not an OBJ file"};
   tinyobj::ObjReader reader;
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;

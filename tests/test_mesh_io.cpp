@@ -154,6 +154,13 @@ TEST(MeshIO, MissingTetGenFilesAreNamed) {
             dir.base("half") + ": density must be a positive number of kg/m³, got -1");
 }
 
+// A folder given where a file belongs is named as such (it read as a file with no faces).
+TEST(MeshIO, AFolderIsNotAMeshFile) {
+  TempDir dir;
+  const std::string folder = dir.base("");
+  EXPECT_EQ(loadObj(folder, 1.0).message(), folder + ": is a folder, not an OBJ file");
+}
+
 TEST(MeshIO, ObjSurfaceLoadsTriangulatedWithAreaMasses) {
   TempDir dir;
   // A 2 m × 1 m rectangle as one quad and a 1 m² square as two triangles beside it.

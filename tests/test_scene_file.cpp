@@ -451,6 +451,8 @@ INSTANTIATE_TEST_SUITE_P(Table, BadSceneFile, testing::ValuesIn(kBadScenes),
 
 TEST(SceneFile, AMissingFileIsNamed) {
   EXPECT_EQ(loadScene("/no/such/scene.json").message(), "/no/such/scene.json: cannot open the scene file");
+  // A folder is named as such (it read as an empty file: "unexpected end of input").
+  EXPECT_EQ(loadScene(tempDir().string()).message(), tempDir().string() + ": is a folder, not a scene file");
 }
 
 }  // namespace

@@ -437,6 +437,8 @@ Result<Scene> parseScene(std::string_view text, const std::string& fileName, con
 }
 
 Result<Scene> loadScene(const std::string& path) {
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error)) return Error{path + ": is a folder, not a scene file"};
   std::ifstream file(path, std::ios::binary);
   if (!file) return Error{path + ": cannot open the scene file"};
   std::stringstream text;
