@@ -31,6 +31,15 @@ TEST(BadInput, Generators) {
   EXPECT_ERROR(makeTetBox({0, 0, 0}, {1, -1, 1}, 1, 1, 1, 1.0), "max corner must exceed min corner");
 }
 
+// Using an error as a value is a programmer error: it stops with the error's message (it threw
+// std::bad_variant_access, which says nothing of what went wrong). An ok Result has no message.
+TEST(BadInputDeathTest, AnErrorUsedAsAValueStopsWithItsMessage) {
+  EXPECT_DEATH((void)*makeRope({0, 0, 0}, {1, 0, 0}, 1, 1.0),
+               "a Result holding an error was used as its value: rope: node count must be >= 2, got 1");
+  EXPECT_DEATH((void)makeRope({0, 0, 0}, {0, 0, 0}, 5, 1.0)->nodeCount(), "start and end coincide");
+  EXPECT_EQ(makeRope({0, 0, 0}, {1, 0, 0}, 5, 1.0).message(), "");
+}
+
 TEST(BadInput, Meshes) {
   DeformableMesh good = *makeRope({0, 0, 0}, {1, 0, 0}, 3, 0.3);
   EXPECT_TRUE(validateMesh(good).ok());

@@ -4,6 +4,8 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <utility>
 #include <variant>
@@ -34,7 +36,16 @@ class [[nodiscard]] Status {
   bool m_failed = false;
 };
 
-// A value or an Error. Small on purpose: C++20 has no std::expected.
+namespace detail {
+// Using a Result that holds an error as its value is a programmer error: say which error, stop.
+[[noreturn]] inline void usedErrorAsValue(const std::string& message) {
+  std::fprintf(stderr, "tandem: a Result holding an error was used as its value: %s\n", message.c_str());
+  std::abort();
+}
+}  // namespace detail
+
+// A value or an Error. Small on purpose: C++20 has no std::expected. Check ok() (or the bool)
+// before using the value: using an error as a value stops the program with the error's message.
 template <class T>
 class [[nodiscard]] Result {
  public:
@@ -43,18 +54,28 @@ class [[nodiscard]] Result {
 
   bool ok() const { return std::holds_alternative<T>(m_state); }
   explicit operator bool() const { return ok(); }
-  const std::string& message() const { return std::get<Error>(m_state).message; }
+  // The error's message; empty when ok.
+  const std::string& message() const {
+    static const std::string none;
+    return ok() ? none : std::get<Error>(m_state).message;
+  }
   Status status() const { return ok() ? Status{} : Status{std::get<Error>(m_state)}; }
 
-  T& value() & { return std::get<T>(m_state); }
-  const T& value() const& { return std::get<T>(m_state); }
-  T&& value() && { return std::get<T>(std::move(m_state)); }
+  T& value() & { return *checkedValue(); }
+  const T& value() const& { return *const_cast<Result*>(this)->checkedValue(); }
+  T&& value() && { return std::move(*checkedValue()); }
   T* operator->() { return &value(); }
   const T* operator->() const { return &value(); }
   T& operator*() & { return value(); }
   const T& operator*() const& { return value(); }
 
  private:
+  T* checkedValue() {
+    T* value = std::get_if<T>(&m_state);
+    if (!value) detail::usedErrorAsValue(std::get<Error>(m_state).message);
+    return value;
+  }
+
   std::variant<T, Error> m_state;
 };
 
