@@ -259,6 +259,19 @@ int main(int argc, char** argv) {
     });
 #endif
 
+  // A first word that is no command gets its own message (CLI11 says "A subcommand is required").
+  if (argc > 1 && argv[1][0] != '-') {
+    std::string commands;
+    bool known = false;
+    for (CLI::App* command : app.get_subcommands([](CLI::App*) { return true; })) {
+      known |= command->check_name(argv[1]);
+      commands += (commands.empty() ? "" : ", ") + command->get_name();
+    }
+    if (!known) {
+      std::fprintf(stderr, "tandem: unknown command '%s' (commands: %s; see tandem --help)\n", argv[1], commands.c_str());
+      return 2;
+    }
+  }
   CLI11_PARSE(app, argc, argv);
 #ifdef TANDEM_HAS_RENDER
   if (const int status = runRenderCommand(); status >= 0) return status;
