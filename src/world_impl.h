@@ -108,23 +108,20 @@ struct World::Impl final : bullet::SolverHooks {
   // The step's start: positions and poses the substeps' contact gaps are measured from, the
   // moving targets' paths, and the impulse sums the report gives cleared.
   void beginStep() {
-    stepStartPositions = nodes.position;
-    if (settings.solver.substeps > 1) stepStartVelocities = nodes.velocity;
-    stepStartPoses.resize(static_cast<size_t>(bullet.rigidBodyCount()));
-    for (int b = 0; b < bullet.rigidBodyCount(); ++b) stepStartPoses[b] = {bullet.position(b), bullet.orientation(b)};
-    fixedPointPaths.clear();
-    for (FixedPointRow& row : rows.fixedPoints) {
-      fixedPointPaths.push_back({row.previousTarget, row.target});
-      row.stepImpulse.setZero();
-    }
-    grabPaths.clear();
-    for (GrabRow& row : rows.grabs) {
-      grabPaths.push_back({row.previousTarget, row.target});
-      row.stepImpulse.setZero();
-    }
+    stepStartPositions = nodes.position;  // also the impact zones' start
+    for (FixedPointRow& row : rows.fixedPoints) row.stepImpulse.setZero();
+    for (GrabRow& row : rows.grabs) row.stepImpulse.setZero();
     for (AnchorRow& row : rows.anchors) row.stepImpulse.setZero();
     for (RigidSolverState& body : rigid) body.impulse = body.angularImpulse = Vec3::Zero();
     bullet.clearContactImpulses();
+    if (settings.solver.substeps == 1) return;  // what only the substeps read
+    stepStartVelocities = nodes.velocity;
+    stepStartPoses.resize(static_cast<size_t>(bullet.rigidBodyCount()));
+    for (int b = 0; b < bullet.rigidBodyCount(); ++b) stepStartPoses[b] = {bullet.position(b), bullet.orientation(b)};
+    fixedPointPaths.clear();
+    for (const FixedPointRow& row : rows.fixedPoints) fixedPointPaths.push_back({row.previousTarget, row.target});
+    grabPaths.clear();
+    for (const GrabRow& row : rows.grabs) grabPaths.push_back({row.previousTarget, row.target});
   }
 
   // The models ran once over the whole step (v ← v*); with n substeps the nodes go back to their

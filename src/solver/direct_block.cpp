@@ -16,7 +16,7 @@ constexpr int kMaxReleaseRounds = 3;
 constexpr Eigen::Index kLowRankReleases = 32;
 // h² K_g per edge is at most this multiple of its lighter node's mass.
 constexpr double kMaxStiffnessToMass = 100;
-// Contacts whose friction a block solves in its own metric (two KKT solves each per step).
+// Contacts whose friction a block solves in its own metric (two KKT solves each per factorisation).
 constexpr size_t kMaxFrictionContacts = 32;
 
 bool isUnbounded(double maxForce) { return std::isinf(maxForce); }
@@ -475,18 +475,35 @@ void DirectBlock::solve(ConstraintRows& rows, SolverContext& ctx, SweepStats& st
   // term taken from the solve: the stiffness forces cancel within each edge and element, so
   // momentum changes by exactly Jᵀ Δλ whatever the solve's rounding.
   const auto deltaLambda = -m_solution.tail(rowCount);
-  m_impulse = m_jacobianT * deltaLambda - m_stiffness * m_solution.head(m_dofCount);
+  m_velocityChange = m_jacobianT * deltaLambda - m_stiffness * m_solution.head(m_dofCount);
+  toVelocityChange(m_velocityChange);
+  applyVelocityChange(m_velocityChange, ctx);
+  addRowImpulses(rows, deltaLambda, ctx);
+  for (int32_t r = 0; r < rowCount; ++r) stats.add(deltaLambda[r]);
+}
+
+// An impulse on the block's degrees of freedom turned, in place, into the velocity change it
+// makes: M⁻¹ per node and body, the body's world inverse inertia for its angular part.
+void DirectBlock::toVelocityChange(Eigen::VectorXd& impulse) const {
   for (int32_t n = 0; n < m_nodeCount; ++n)
-    if (m_nodeDof[n] >= 0)
-      ctx.velocity[globalNode(n)] += m_inverseMass[m_nodeDof[n]] * m_impulse.segment<3>(m_nodeDof[n]);
+    if (m_nodeDof[n] >= 0) impulse.segment<3>(m_nodeDof[n]) *= m_inverseMass[m_nodeDof[n]];
+  for (size_t b = 0; b < m_bodies.size(); ++b) {
+    if (m_bodyDof[b] < 0) continue;
+    impulse.segment<3>(m_bodyDof[b]) *= m_inverseMass[m_bodyDof[b]];
+    impulse.segment<3>(m_bodyDof[b] + 3) = m_bodyInverseInertia[b] * impulse.segment<3>(m_bodyDof[b] + 3);
+  }
+}
+
+// A velocity change of the block's degrees of freedom added to its nodes and bodies.
+void DirectBlock::applyVelocityChange(const Eigen::VectorXd& change, SolverContext& ctx) const {
+  for (int32_t n = 0; n < m_nodeCount; ++n)
+    if (m_nodeDof[n] >= 0) ctx.velocity[globalNode(n)] += change.segment<3>(m_nodeDof[n]);
   for (size_t b = 0; b < m_bodies.size(); ++b) {
     if (m_bodyDof[b] < 0) continue;
     RigidSolverState& body = ctx.rigid[m_bodies[b]];
-    body.linearVelocity += m_inverseMass[m_bodyDof[b]] * m_impulse.segment<3>(m_bodyDof[b]);
-    body.angularVelocity += m_bodyInverseInertia[b] * m_impulse.segment<3>(m_bodyDof[b] + 3);
+    body.linearVelocity += change.segment<3>(m_bodyDof[b]);
+    body.angularVelocity += change.segment<3>(m_bodyDof[b] + 3);
   }
-  addRowImpulses(rows, deltaLambda, ctx);
-  for (int32_t r = 0; r < rowCount; ++r) stats.add(deltaLambda[r]);
 }
 
 // Δλ added to the block's rows, and their rigid bodies' share to the per-body impulse report.
@@ -559,11 +576,8 @@ void DirectBlock::computeFrictionResponses(const ConstraintRows& rows) {
       response.impulse[t] = -m_solution.tail(rowCount);
       for (int32_t q = 0; q < rowCount; ++q)
         if (m_released[q]) response.impulse[t][q] = 0.0;
-      const Eigen::VectorXd impulse = applied[t] + m_jacobianT * response.impulse[t] - m_stiffness * m_solution.head(m_dofCount);
-      response.velocity[t] = impulse.cwiseProduct(m_inverseMass);
-      for (size_t b = 0; b < m_bodies.size(); ++b)
-        if (m_bodyDof[b] >= 0)
-          response.velocity[t].segment<3>(m_bodyDof[b] + 3) = m_bodyInverseInertia[b] * impulse.segment<3>(m_bodyDof[b] + 3);
+      response.velocity[t] = applied[t] + m_jacobianT * response.impulse[t] - m_stiffness * m_solution.head(m_dofCount);
+      toVelocityChange(response.velocity[t]);
     }
     Eigen::Matrix2d w;
     for (int i = 0; i < 2; ++i)
@@ -597,25 +611,15 @@ void DirectBlock::solveFriction(ConstraintRows& rows, SolverContext& ctx, Fricti
     row.lambdaTangent = previous + delta;
     if (delta.isZero()) continue;
     // The whole block moves; a body outside it (a static or kinematic one) takes nothing.
-    for (int32_t n = 0; n < m_nodeCount; ++n)
-      if (m_nodeDof[n] >= 0)
-        ctx.velocity[globalNode(n)] += delta[0] * response.velocity[0].segment<3>(m_nodeDof[n]) +
-                                       delta[1] * response.velocity[1].segment<3>(m_nodeDof[n]);
-    for (size_t b = 0; b < m_bodies.size(); ++b) {
-      if (m_bodyDof[b] < 0) continue;
-      RigidSolverState& body = ctx.rigid[m_bodies[b]];
-      body.linearVelocity += delta[0] * response.velocity[0].segment<3>(m_bodyDof[b]) +
-                             delta[1] * response.velocity[1].segment<3>(m_bodyDof[b]);
-      body.angularVelocity += delta[0] * response.velocity[0].segment<3>(m_bodyDof[b] + 3) +
-                              delta[1] * response.velocity[1].segment<3>(m_bodyDof[b] + 3);
-    }
+    m_velocityChange = delta[0] * response.velocity[0] + delta[1] * response.velocity[1];
+    applyVelocityChange(m_velocityChange, ctx);
     if (row.body >= 0) {  // the friction's own share of the body's impulse, for the report
       const Vec3 onBody = -(delta[0] * row.tangent1 + delta[1] * row.tangent2);
       ctx.rigid[row.body].impulse += onBody;
       ctx.rigid[row.body].angularImpulse += row.offset.cross(onBody);
     }
-    const Eigen::VectorXd rowDelta = delta[0] * response.impulse[0] + delta[1] * response.impulse[1];
-    addRowImpulses(rows, rowDelta, ctx);
+    m_rowImpulseChange = delta[0] * response.impulse[0] + delta[1] * response.impulse[1];
+    addRowImpulses(rows, m_rowImpulseChange, ctx);
     stats.add(delta[0]);
     stats.add(delta[1]);
   }

@@ -144,7 +144,9 @@ class DirectBlock {
   std::unique_ptr<Eigen::SimplicialLDLT<SparseMatrix>> m_factor = std::make_unique<Eigen::SimplicialLDLT<SparseMatrix>>();
   bool m_factorOk = false;
   std::vector<int> m_analysedOuter, m_analysedInner;  // the pattern the ordering was computed for
-  Eigen::VectorXd m_rhs, m_solution, m_impulse;
+  Eigen::VectorXd m_rhs, m_solution;
+  Eigen::VectorXd m_velocityChange;    // scratch: of the block's degrees of freedom
+  Eigen::VectorXd m_rowImpulseChange;  // scratch: Δλ of the block's rows
   SparseMatrix m_jacobianT;         // Jᵀ: dofs × rows
   Eigen::VectorXd m_inverseMass;    // per degree of freedom (linear ones; nodes and bodies)
   std::vector<Mat3> m_bodyInverseInertia;
@@ -168,6 +170,8 @@ class DirectBlock {
 
   void computeFrictionResponses(const ConstraintRows& rows);
   void addRowImpulses(ConstraintRows& rows, const Eigen::VectorXd& deltaLambda, SolverContext& ctx) const;
+  void toVelocityChange(Eigen::VectorXd& impulse) const;
+  void applyVelocityChange(const Eigen::VectorXd& change, SolverContext& ctx) const;
   Eigen::VectorXd impulseOnDofs(const ContactRow& row, const Vec3& axis) const;  // Jᵀ of a row along axis
   int32_t localNode(int32_t node) const;  // index among the block's nodes, or −1
   int32_t globalNode(int32_t local) const;
