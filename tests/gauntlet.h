@@ -149,7 +149,12 @@ inline Outcome atwood(const Override& override = {}) {
   const double r = 0.2, ropeRadius = 0.202, ropeMass = 0.02, g = 9.81;
   const double inertia = 0.5 * m * r * r;
   const double expected = g * (m2 - m1) / (m1 + m2 + inertia / (ropeRadius * ropeRadius) + ropeMass);
-  double worstSlip = 0.0, t = 0.0, speedAtStart = 0.0, timeAtStart = 0.0;
+  // Slip is the rope creeping over the rim: the heavy end's travel against the rim's, from 0.2 s
+  // on. The speeds' ratio at single steps also swings with chordal action (a rope of 4.3 cm
+  // links wrapped on a 0.2 m wheel is a polygon whose nodes step on and off the rim), so it
+  // gets a looser bound.
+  double worstSpeedRatio = 0.0, t = 0.0, speedAtStart = 0.0, timeAtStart = 0.0;
+  double ropeTravel = 0.0, rimTravel = 0.0;
   run.run(0, [&] {
     t += run.h();
     const double ropeSpeed = -run.world.rigidLinearVelocity(heavy).y();
@@ -158,11 +163,15 @@ inline Outcome atwood(const Override& override = {}) {
     if (timeAtStart == 0.0) {
       timeAtStart = t;
       speedAtStart = ropeSpeed;
+      return;
     }
-    worstSlip = std::max(worstSlip, std::abs(rimSpeed / ropeSpeed - 1.0));
+    ropeTravel += ropeSpeed * run.h();
+    rimTravel += rimSpeed * run.h();
+    worstSpeedRatio = std::max(worstSpeedRatio, std::abs(rimSpeed / ropeSpeed - 1.0));
   });
   const double acceleration = (-run.world.rigidLinearVelocity(heavy).y() - speedAtStart) / (t - timeAtStart);
-  result.measures = {{"slip |rim/rope - 1| after 0.2 s", worstSlip, -INFINITY, 0.02},
+  result.measures = {{"slip |rim travel/rope travel - 1| after 0.2 s", std::abs(rimTravel / ropeTravel - 1.0), -INFINITY, 0.02},
+                     {"worst |rim speed/rope speed - 1| at one step", worstSpeedRatio, -INFINITY, 0.05},
                      {"acceleration / analytic", acceleration / expected, 0.95, 1.05}};
   return result;
 }

@@ -16,7 +16,11 @@ void expectPasses(const Outcome& result) {
                           << m.high << "]";
 }
 
-TEST(Gauntlet, AtwoodMachineOverAHingedWheelDoesNotSlipAndAcceleratesAsAnalytic) { expectPasses(atwood()); }
+TEST(Gauntlet, AtwoodMachineOverAHingedWheelDoesNotSlipAndAcceleratesAsAnalytic) {
+  expectPasses(atwood());
+  expectPasses(atwood({.iterations = 2, .substeps = 1}));  // the paper's settings
+  expectPasses(atwood({.iterations = 4, .substeps = 1}));  // the default
+}
 TEST(Gauntlet, CapstanHoldsBelowTheCapstanRatio) { expectPasses(capstan(true)); }
 TEST(Gauntlet, CapstanSlidesAboveTheCapstanRatio) { expectPasses(capstan(false)); }
 TEST(Gauntlet, HeavyPendulumOnALightRopeHoldsAndKeepsItsPeriod) { expectPasses(heavyPendulum()); }
@@ -30,7 +34,18 @@ TEST(Gauntlet, DISABLED_FastProjectileDoesNotPassThroughCloth) {
   expectPasses(projectile(20));
   expectPasses(projectile(60));
 }
-TEST(Gauntlet, DISABLED_RopeOverWheelHoldsItsPivotAndComesToRest) { expectPasses(ropeWheel()); }
+// The wheel is hinged to the world: Tandem's rows move it only about its axle (RigidSolverState).
+TEST(Gauntlet, RopeOverWheelHoldsItsPivot) {
+  for (const Override& settings : {Override{}, Override{.iterations = 2, .substeps = 1}, Override{.iterations = 2, .substeps = 4}}) {
+    const Outcome result = ropeWheel(settings);
+    ASSERT_TRUE(result.error.empty()) << result.error;
+    const Measure& sag = result.measures.at(0);
+    EXPECT_TRUE(sag.pass()) << sag.name << " = " << sag.value << " at K = " << settings.iterations;
+  }
+}
+// After the heavy body lands, the light one swings on the rope as an undamped pendulum (about
+// 0.1–0.3 m/s, no growth: docs/solver.md); nothing in the scene damps it.
+TEST(Gauntlet, DISABLED_RopeOverWheelComesToRest) { expectPasses(ropeWheel()); }
 TEST(Gauntlet, DISABLED_BodiesOnClothComeToRest) {
   expectPasses(restOnCloth("hammock.json", "hammock"));
   expectPasses(restOnCloth("gauntlet/box_stack_on_cloth.json", "hammock"));

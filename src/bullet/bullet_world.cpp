@@ -158,6 +158,8 @@ struct BulletWorld::Impl {
     double impulse;    // N·s, summed over the step's solves
   };
   std::vector<PairImpulse> pairImpulses;  // reused from step to step
+  std::vector<RigidSolverState::LockedRows> lockedRows;  // per body, reused (restrictJointedBodies)
+  std::vector<int> weldGroup;
 
   ~Impl() {
     for (int i = world.getNumConstraints() - 1; i >= 0; --i) world.removeConstraint(world.getConstraint(i));
@@ -304,6 +306,90 @@ void BulletWorld::loadRigidProperties(std::span<RigidSolverState> states) const 
     state.linearVelocity = fromBt(body.getLinearVelocity());
     state.angularVelocity = fromBt(body.getAngularVelocity());
   }
+  restrictJointedBodies(states);
+}
+
+// What joints to immovable bodies (static, kinematic, asleep, the world) allow is a kinematic
+// fact: a movable body hinged to the world can only turn about the hinge, whatever else is
+// attached to it. Bodies welded together by fixed joints move as one, so each member of a welded
+// group is held by every world joint of the group: a wheel with flanges fixed to it is still a
+// wheel on an axle. Each member keeps its own mass (RigidSolverState::restrictMotion): an impulse
+// on it then carries exactly its momentum, and Bullet's welds share it out. Joints between two
+// movable bodies other than welds, and joint types not known here, restrict nothing.
+void BulletWorld::restrictJointedBodies(std::span<RigidSolverState> states) const {
+  const auto& bodies = m_impl->bodies;
+  auto indexOf = [&](const btRigidBody& body) -> int {
+    const int id = body.getUserIndex();  // set to the body's index when it was added
+    return id >= 0 && static_cast<size_t>(id) < bodies.size() && bodies[static_cast<size_t>(id)].get() == &body ? id : -1;
+  };
+  auto movable = [&](int body) { return body >= 0 && states[static_cast<size_t>(body)].inverseMass > 0.0; };
+  // Welded groups: union-find over fixed joints between movable bodies.
+  std::vector<int>& group = m_impl->weldGroup;
+  group.resize(states.size());
+  for (size_t i = 0; i < group.size(); ++i) group[i] = static_cast<int>(i);
+  auto root = [&](int i) {
+    while (group[static_cast<size_t>(i)] != i) i = group[static_cast<size_t>(i)] = group[static_cast<size_t>(group[static_cast<size_t>(i)])];
+    return i;
+  };
+  bool anyWorldJoint = false, anyWeld = false;
+  for (const auto& joint : m_impl->joints) {
+    if (!joint->isEnabled()) continue;
+    const int a = indexOf(joint->getRigidBodyA()), b = indexOf(joint->getRigidBodyB());
+    if (movable(a) && movable(b)) {
+      if (dynamic_cast<const btFixedConstraint*>(joint.get())) {
+        group[static_cast<size_t>(root(a))] = root(b);
+        anyWeld = true;
+      }
+    } else if (movable(a) || movable(b)) {
+      anyWorldJoint = true;
+    }
+  }
+  if (!anyWorldJoint) {
+    for (RigidSolverState& state : states) state.restrictMotion({});
+    return;
+  }
+  // Each world joint's rows, per member of its group, about the member's own centre.
+  std::vector<RigidSolverState::LockedRows>& locked = m_impl->lockedRows;
+  locked.assign(states.size(), RigidSolverState::LockedRows(0, 6));
+  for (const auto& joint : m_impl->joints) {
+    if (!joint->isEnabled()) continue;
+    const int a = indexOf(joint->getRigidBodyA()), b = indexOf(joint->getRigidBodyB());
+    if (movable(a) == movable(b)) continue;
+    const bool onA = movable(a);
+    const int held = onA ? a : b;
+    const auto* hinge = dynamic_cast<const btHingeConstraint*>(joint.get());
+    const bool fixed = dynamic_cast<const btFixedConstraint*>(joint.get()) != nullptr;
+    if (!hinge && !fixed) continue;
+    Vec3 pivot = Vec3::Zero(), axis = Vec3::UnitZ();
+    if (hinge) {
+      const btTransform frame =
+          bodies[static_cast<size_t>(held)]->getCenterOfMassTransform() * (onA ? hinge->getAFrame() : hinge->getBFrame());
+      pivot = fromBt(frame.getOrigin());
+      axis = fromBt(frame.getBasis().getColumn(2)).normalized();
+    }
+    const int heldGroup = root(held);
+    const size_t firstMember = anyWeld ? 0 : static_cast<size_t>(held);
+    const size_t endMember = anyWeld ? states.size() : static_cast<size_t>(held) + 1;
+    for (size_t member = firstMember; member < endMember; ++member) {
+      if (!movable(static_cast<int>(member)) || root(static_cast<int>(member)) != heldGroup) continue;
+      RigidSolverState::LockedRows& rows = locked[member];
+      const Eigen::Index first = rows.rows();
+      if (first + 6 > rows.MaxRowsAtCompileTime) continue;  // already held by four joints
+      if (fixed) {
+        rows.conservativeResize(first + 6, 6);
+        rows.block<6, 6>(first, 0) = Mat6::Identity();
+        continue;
+      }
+      // The pivot p is held, v + ω × (p − c) = 0; ω has no part across the axis a.
+      const Vec3 across1 = axis.unitOrthogonal(), across2 = axis.cross(across1);
+      rows.conservativeResize(first + 5, 6);
+      rows.block<3, 3>(first, 0) = Mat3::Identity();
+      rows.block<3, 3>(first, 3) = -crossMatrix(pivot - states[member].centerOfMass);
+      rows.row(first + 3) << 0, 0, 0, across1.transpose();
+      rows.row(first + 4) << 0, 0, 0, across2.transpose();
+    }
+  }
+  for (size_t i = 0; i < states.size(); ++i) states[i].restrictMotion(locked[i]);
 }
 
 void BulletWorld::loadRigidVelocities(std::span<RigidSolverState> states) const {

@@ -84,6 +84,7 @@ class BulletWorld {
   double sleepingThreshold(int body) const;
 
  private:
+  void restrictJointedBodies(std::span<RigidSolverState> states) const;
   struct Impl;
   std::unique_ptr<Impl> m_impl;
   void addContactImpulses();

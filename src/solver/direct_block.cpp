@@ -140,16 +140,29 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
       m_nodeDof[n] = m_dofCount;
       m_dofCount += 3;
     }
+  // A body's degrees of freedom are the directions its joints to the world leave free: six for
+  // a free body, one for a wheel on an axle (see RigidSolverState), with velocity G q̇.
   m_bodyDof.assign(m_bodies.size(), -1);
-  for (size_t b = 0; b < m_bodies.size(); ++b)
-    if (rigid[m_bodies[b]].inverseMass > 0) {
-      m_bodyDof[b] = m_dofCount;
-      m_dofCount += 6;
+  m_bodyMotion.resize(m_bodies.size());
+  for (size_t b = 0; b < m_bodies.size(); ++b) {
+    const RigidSolverState& body = rigid[m_bodies[b]];
+    BodyMotion& motion = m_bodyMotion[b];
+    motion.freedoms = body.inverseMass > 0 ? body.freedoms : 0;
+    if (motion.freedoms == 0) continue;
+    if (body.isJointed()) {
+      motion.basis = body.motionBasis;
+      motion.inverseMass = body.reducedInverseMass;
+    } else {
+      motion.basis.setIdentity();
+      motion.inverseMass.setZero();
+      motion.inverseMass.topLeftCorner<3, 3>() = body.inverseMass * Mat3::Identity();
+      motion.inverseMass.bottomRightCorner<3, 3>() = body.inverseInertia;
     }
+    m_bodyDof[b] = m_dofCount;
+    m_dofCount += motion.freedoms;
+  }
   auto nodeDof = [&](int32_t node) { return m_nodeDof[localNode(node)]; };
-  auto bodyDof = [&](int32_t body) {
-    return m_bodyDof[std::find(m_bodies.begin(), m_bodies.end(), body) - m_bodies.begin()];
-  };
+  auto blockBody = [&](int32_t body) { return static_cast<size_t>(std::find(m_bodies.begin(), m_bodies.end(), body) - m_bodies.begin()); };
 
   const int32_t rowCount = scalarRowCount();
   std::vector<Eigen::Triplet<double>> entries;
@@ -163,13 +176,11 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
   }
   for (size_t b = 0; b < m_bodies.size(); ++b) {
     if (m_bodyDof[b] < 0) continue;
-    const RigidSolverState& body = rigid[m_bodies[b]];
-    const Mat3 inertia = body.inverseInertia.inverse();
-    const int32_t dof = m_bodyDof[b];
-    for (int32_t r = 0; r < 3; ++r) {
-      entries.emplace_back(dof + r, dof + r, 1.0 / body.inverseMass);
-      for (int32_t c = 0; c < 3; ++c) entries.emplace_back(dof + 3 + r, dof + 3 + c, inertia(r, c));
-    }
+    const int k = m_bodyMotion[b].freedoms;
+    const Eigen::MatrixXd mass = m_bodyMotion[b].inverseMass.topLeftCorner(k, k).inverse();  // Gᵀ 𝕄 G
+    for (int r = 0; r < k; ++r)
+      for (int c = 0; c < k; ++c)
+        if (mass(r, c) != 0.0) entries.emplace_back(m_bodyDof[b] + r, m_bodyDof[b] + c, mass(r, c));
   }
   std::vector<Eigen::Triplet<double>> stiffnessEntries;
   auto addStiffness = [&](int32_t dofA, int32_t dofB, const Mat3& k) {
@@ -229,13 +240,19 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
       }
       inverseMassSum += inverseMass * j.squaredNorm();
     };
-    // The rigid entry of a row along `axis` at `offset`: −axis linear, axis × offset angular.
+    // The rigid entry of a row along `axis` at `offset`: −axis linear, axis × offset angular,
+    // in the body's free directions, Gᵀ (−axis, axis × offset).
     auto addRigid = [&](int32_t body, const Vec3& axis, const Vec3& offset) {
-      const int32_t dof = bodyDof(body);
-      add(dof, -axis, rigid[body].inverseMass);
-      const Vec3 angular = axis.cross(offset);
-      if (dof >= 0) add(dof + 3, angular, 0.0);
-      inverseMassSum += angular.dot(rigid[body].inverseInertia * angular);
+      const size_t b = blockBody(body);
+      inverseMassSum += axis.dot(rigid[body].pointCompliance(offset) * axis);
+      if (m_bodyDof[b] < 0) return;
+      const Vec6 entry = m_bodyMotion[b].generalisedImpulse(-axis, offset);
+      for (int c = 0; c < m_bodyMotion[b].freedoms; ++c) {
+        if (entry[c] == 0.0) continue;
+        entries.emplace_back(kktRow, m_bodyDof[b] + c, entry[c]);
+        entries.emplace_back(m_bodyDof[b] + c, kktRow, entry[c]);
+        transposed.emplace_back(m_bodyDof[b] + c, r, entry[c]);
+      }
     };
     const BlockRowRef& ref = m_rows[r];
     switch (ref.type) {
@@ -287,12 +304,6 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
   m_inverseMass.resize(m_dofCount);
   for (int32_t n = 0; n < m_nodeCount; ++n)
     if (m_nodeDof[n] >= 0) m_inverseMass.segment<3>(m_nodeDof[n]).setConstant(nodes.inverseMass[globalNode(n)]);
-  m_bodyInverseInertia.resize(m_bodies.size());
-  for (size_t b = 0; b < m_bodies.size(); ++b) {
-    if (m_bodyDof[b] < 0) continue;
-    m_inverseMass.segment<3>(m_bodyDof[b]).setConstant(rigid[m_bodies[b]].inverseMass);
-    m_bodyInverseInertia[b] = rigid[m_bodies[b]].inverseInertia;
-  }
 
   m_entries = std::move(entries);
   factorise();
@@ -483,14 +494,15 @@ void DirectBlock::solve(ConstraintRows& rows, SolverContext& ctx, SweepStats& st
 }
 
 // An impulse on the block's degrees of freedom turned, in place, into the velocity change it
-// makes: M⁻¹ per node and body, the body's world inverse inertia for its angular part.
+// makes: m⁻¹ per node, (Gᵀ 𝕄 G)⁻¹ per body.
 void DirectBlock::toVelocityChange(Eigen::VectorXd& impulse) const {
   for (int32_t n = 0; n < m_nodeCount; ++n)
     if (m_nodeDof[n] >= 0) impulse.segment<3>(m_nodeDof[n]) *= m_inverseMass[m_nodeDof[n]];
   for (size_t b = 0; b < m_bodies.size(); ++b) {
     if (m_bodyDof[b] < 0) continue;
-    impulse.segment<3>(m_bodyDof[b]) *= m_inverseMass[m_bodyDof[b]];
-    impulse.segment<3>(m_bodyDof[b] + 3) = m_bodyInverseInertia[b] * impulse.segment<3>(m_bodyDof[b] + 3);
+    const int k = m_bodyMotion[b].freedoms;
+    const Vec6 generalised = impulse.segment(m_bodyDof[b], k);
+    impulse.segment(m_bodyDof[b], k) = m_bodyMotion[b].inverseMass.topLeftCorner(k, k) * generalised.head(k);
   }
 }
 
@@ -501,8 +513,10 @@ void DirectBlock::applyVelocityChange(const Eigen::VectorXd& change, SolverConte
   for (size_t b = 0; b < m_bodies.size(); ++b) {
     if (m_bodyDof[b] < 0) continue;
     RigidSolverState& body = ctx.rigid[m_bodies[b]];
-    body.linearVelocity += change.segment<3>(m_bodyDof[b]);
-    body.angularVelocity += change.segment<3>(m_bodyDof[b] + 3);
+    const int k = m_bodyMotion[b].freedoms;
+    const Vec6 velocity = m_bodyMotion[b].basis.leftCols(k) * change.segment(m_bodyDof[b], k);
+    body.linearVelocity += velocity.head<3>();
+    body.angularVelocity += velocity.tail<3>();
   }
 }
 
@@ -549,9 +563,9 @@ Eigen::VectorXd DirectBlock::impulseOnDofs(const ContactRow& row, const Vec3& ax
   }
   const auto body = std::find(m_bodies.begin(), m_bodies.end(), row.body);
   if (row.body >= 0 && body != m_bodies.end() && m_bodyDof[body - m_bodies.begin()] >= 0) {
-    const int32_t dof = m_bodyDof[body - m_bodies.begin()];
-    f.segment<3>(dof) -= axis;
-    f.segment<3>(dof + 3) += axis.cross(row.offset);
+    const BodyMotion& motion = m_bodyMotion[static_cast<size_t>(body - m_bodies.begin())];
+    f.segment(m_bodyDof[body - m_bodies.begin()], motion.freedoms) =
+        motion.generalisedImpulse(-axis, row.offset).head(motion.freedoms);
   }
   return f;
 }

@@ -148,8 +148,21 @@ class DirectBlock {
   Eigen::VectorXd m_velocityChange;    // scratch: of the block's degrees of freedom
   Eigen::VectorXd m_rowImpulseChange;  // scratch: Δλ of the block's rows
   SparseMatrix m_jacobianT;         // Jᵀ: dofs × rows
-  Eigen::VectorXd m_inverseMass;    // per degree of freedom (linear ones; nodes and bodies)
-  std::vector<Mat3> m_bodyInverseInertia;
+  Eigen::VectorXd m_inverseMass;    // per node degree of freedom
+  // Per entry of m_bodies: its free directions G (6 × k) and (Gᵀ 𝕄 G)⁻¹; for a free body
+  // G = I and the inverse is diag(m⁻¹ I, I⁻¹).
+  struct BodyMotion {
+    int freedoms = 0;
+    Mat6 basis = Mat6::Identity();
+    Mat6 inverseMass = Mat6::Zero();
+    // Gᵀ (P, r × P): an impulse P at offset r in the free directions (first k entries).
+    Vec6 generalisedImpulse(const Vec3& p, const Vec3& offset) const {
+      Vec6 f;
+      f << p, offset.cross(p);
+      return basis.transpose() * f;
+    }
+  };
+  std::vector<BodyMotion> m_bodyMotion;
   SparseMatrix m_stiffness;         // h² (K_g + K_e): dofs × dofs
   std::vector<Eigen::Triplet<double>> m_entries;  // the KKT matrix, kept to release contacts
   std::vector<std::pair<size_t, size_t>> m_rowEntries;  // each row's entries; its diagonal last
