@@ -7,68 +7,136 @@ World::~World() = default;
 
 const WorldSettings& World::settings() const { return m_impl->settings; }
 
+// ---- Ids: queries given a bad id return a neutral value and record the error -------------
+
+namespace {
+const std::string kNoName;
+}  // namespace
+
+bool World::contains(RigidBodyId id) const { return m_impl->rigidSlots.live(id.index, id.generation); }
+bool World::contains(DeformableId id) const { return m_impl->deformableSlots.live(id.index, id.generation); }
+bool World::contains(JointId id) const { return m_impl->jointSlots.live(id.index, id.generation); }
+bool World::contains(AnchorId id) const { return m_impl->anchorSlots.live(id.index, id.generation); }
+bool World::contains(FixedPointId id) const { return m_impl->fixedPointSlots.live(id.index, id.generation); }
+bool World::contains(GrabId id) const { return m_impl->grabSlots.live(id.index, id.generation); }
+
+Status World::takeLookupError() const {
+  if (m_impl->lookupError.empty()) return {};
+  Error error{m_impl->lookupError};
+  m_impl->lookupError.clear();
+  return error;
+}
+
 // ---- Rigid bodies -----------------------------------------------------------------------
 
-int World::rigidBodyCount() const { return m_impl->bullet.rigidBodyCount(); }
+int World::rigidBodyCount() const { return m_impl->rigidSlots.liveCount(); }
+std::vector<RigidBodyId> World::rigidBodies() const {
+  std::vector<RigidBodyId> ids;
+  for (int32_t i = 0; i < static_cast<int32_t>(m_impl->rigidSlots.size()); ++i)
+    if (m_impl->rigidSlots.liveIndex(i)) ids.push_back(m_impl->rigidId(i));
+  return ids;
+}
 std::optional<RigidBodyId> World::findRigidBody(std::string_view name) const {
   for (size_t i = 0; i < m_impl->rigidNames.size(); ++i)
-    if (m_impl->rigidNames[i] == name) return RigidBodyId{static_cast<int32_t>(i)};
+    if (m_impl->rigidSlots.liveIndex(static_cast<int32_t>(i)) && m_impl->rigidNames[i] == name)
+      return m_impl->rigidId(static_cast<int32_t>(i));
   return std::nullopt;
 }
-const std::string& World::rigidName(RigidBodyId body) const { return m_impl->rigidNames.at(body.index); }
-Vec3 World::rigidPosition(RigidBodyId body) const { return m_impl->bullet.position(body.index); }
-Quat World::rigidOrientation(RigidBodyId body) const { return m_impl->bullet.orientation(body.index); }
-Vec3 World::rigidLinearVelocity(RigidBodyId body) const { return m_impl->bullet.linearVelocity(body.index); }
-Vec3 World::rigidAngularVelocity(RigidBodyId body) const { return m_impl->bullet.angularVelocity(body.index); }
-double World::rigidMass(RigidBodyId body) const { return m_impl->bullet.mass(body.index); }
-Mat3 World::rigidInertia(RigidBodyId body) const { return m_impl->bullet.inertia(body.index); }
-bool World::rigidIsAwake(RigidBodyId body) const { return m_impl->bullet.isAwake(body.index); }
+const std::string& World::rigidName(RigidBodyId body) const {
+  return m_impl->lookup(m_impl->rigidSlots, body) ? m_impl->rigidNames[body.index] : kNoName;
+}
+Vec3 World::rigidPosition(RigidBodyId body) const {
+  return m_impl->lookup(m_impl->rigidSlots, body) ? m_impl->bullet.position(body.index) : Vec3::Zero();
+}
+Quat World::rigidOrientation(RigidBodyId body) const {
+  return m_impl->lookup(m_impl->rigidSlots, body) ? m_impl->bullet.orientation(body.index) : Quat::Identity();
+}
+Vec3 World::rigidLinearVelocity(RigidBodyId body) const {
+  return m_impl->lookup(m_impl->rigidSlots, body) ? m_impl->bullet.linearVelocity(body.index) : Vec3::Zero();
+}
+Vec3 World::rigidAngularVelocity(RigidBodyId body) const {
+  return m_impl->lookup(m_impl->rigidSlots, body) ? m_impl->bullet.angularVelocity(body.index) : Vec3::Zero();
+}
+double World::rigidMass(RigidBodyId body) const {
+  return m_impl->lookup(m_impl->rigidSlots, body) ? m_impl->bullet.mass(body.index) : 0.0;
+}
+Mat3 World::rigidInertia(RigidBodyId body) const {
+  return m_impl->lookup(m_impl->rigidSlots, body) ? m_impl->bullet.inertia(body.index) : Mat3::Zero();
+}
+bool World::rigidIsAwake(RigidBodyId body) const {
+  return m_impl->lookup(m_impl->rigidSlots, body) && m_impl->bullet.isAwake(body.index);
+}
 double World::rigidContactImpulse(RigidBodyId a, RigidBodyId b) const {
+  if (!m_impl->lookup(m_impl->rigidSlots, a) || !m_impl->lookup(m_impl->rigidSlots, b)) return 0.0;
   return m_impl->bullet.contactImpulse(a.index, b.index);
 }
-Vec3 World::deformableImpulseOnRigid(RigidBodyId body) const { return m_impl->rigid[body.index].impulse; }
+Vec3 World::deformableImpulseOnRigid(RigidBodyId body) const {
+  return m_impl->lookup(m_impl->rigidSlots, body) ? m_impl->rigid[body.index].impulse : Vec3::Zero();
+}
 Vec3 World::deformableAngularImpulseOnRigid(RigidBodyId body) const {
-  return m_impl->rigid[body.index].angularImpulse;
+  return m_impl->lookup(m_impl->rigidSlots, body) ? m_impl->rigid[body.index].angularImpulse : Vec3::Zero();
 }
 Vec3 World::deformableForceOnRigid(RigidBodyId body) const {
-  return m_impl->timeStep > 0 ? Vec3(m_impl->rigid[body.index].impulse / m_impl->timeStep) : Vec3::Zero();
+  const double h = m_impl->timeStep;
+  return h > 0 ? Vec3(deformableImpulseOnRigid(body) / h) : Vec3(deformableImpulseOnRigid(body) * 0.0);
 }
 Vec3 World::deformableTorqueOnRigid(RigidBodyId body) const {
-  return m_impl->timeStep > 0 ? Vec3(m_impl->rigid[body.index].angularImpulse / m_impl->timeStep) : Vec3::Zero();
+  const double h = m_impl->timeStep;
+  return h > 0 ? Vec3(deformableAngularImpulseOnRigid(body) / h) : Vec3(deformableAngularImpulseOnRigid(body) * 0.0);
 }
 
 // ---- Deformable bodies ------------------------------------------------------------------
 
-int World::deformableCount() const { return static_cast<int>(m_impl->deformables.size()); }
+int World::deformableCount() const { return m_impl->deformableSlots.liveCount(); }
+std::vector<DeformableId> World::deformableIds() const {
+  std::vector<DeformableId> ids;
+  for (size_t d = 0; d < m_impl->deformables.size(); ++d)
+    if (!m_impl->deformables[d].removed) ids.push_back(m_impl->deformableId(d));
+  return ids;
+}
 std::optional<DeformableId> World::findDeformable(std::string_view name) const {
   for (size_t i = 0; i < m_impl->deformables.size(); ++i)
-    if (m_impl->deformables[i].name == name) return DeformableId{static_cast<int32_t>(i)};
+    if (!m_impl->deformables[i].removed && m_impl->deformables[i].name == name) return m_impl->deformableId(i);
   return std::nullopt;
 }
-const std::string& World::deformableName(DeformableId body) const { return m_impl->deformables.at(body.index).name; }
+const std::string& World::deformableName(DeformableId body) const {
+  return m_impl->lookup(m_impl->deformableSlots, body) ? m_impl->deformables[body.index].name : kNoName;
+}
 
 std::span<const Vec3> World::nodePositions(DeformableId body) const {
-  const DeformableRecord& r = m_impl->deformables.at(body.index);
+  if (!m_impl->lookup(m_impl->deformableSlots, body)) return {};
+  const DeformableRecord& r = m_impl->deformables[body.index];
   return std::span<const Vec3>(m_impl->nodes.position).subspan(r.firstNode, r.nodeCount);
 }
 std::span<const Vec3> World::nodeVelocities(DeformableId body) const {
-  const DeformableRecord& r = m_impl->deformables.at(body.index);
+  if (!m_impl->lookup(m_impl->deformableSlots, body)) return {};
+  const DeformableRecord& r = m_impl->deformables[body.index];
   return std::span<const Vec3>(m_impl->nodes.velocity).subspan(r.firstNode, r.nodeCount);
 }
 std::span<const double> World::nodeInverseMasses(DeformableId body) const {
-  const DeformableRecord& r = m_impl->deformables.at(body.index);
+  if (!m_impl->lookup(m_impl->deformableSlots, body)) return {};
+  const DeformableRecord& r = m_impl->deformables[body.index];
   return std::span<const double>(m_impl->nodes.inverseMass).subspan(r.firstNode, r.nodeCount);
 }
-const DeformableMesh& World::restMesh(DeformableId body) const { return m_impl->deformables.at(body.index).restMesh; }
+const DeformableMesh& World::restMesh(DeformableId body) const {
+  static const DeformableMesh kNoMesh;
+  return m_impl->lookup(m_impl->deformableSlots, body) ? m_impl->deformables[body.index].restMesh : kNoMesh;
+}
 
-Vec3 World::fixedPointImpulse(FixedPointId id) const { return m_impl->rows.fixedPoints.at(id.index).stepImpulse; }
+Vec3 World::fixedPointImpulse(FixedPointId id) const {
+  const Impl& w = *m_impl;
+  if (!w.lookup(w.fixedPointSlots, id)) return Vec3::Zero();
+  return w.rows.fixedPoints[w.fixedPointSlots.position(id.index)].stepImpulse;
+}
 
 AnchorState World::anchorState(AnchorId id) const {
-  const AnchorRow& row = m_impl->rows.anchors.at(id.index);
+  const Impl& w = *m_impl;
+  if (!w.lookup(w.anchorSlots, id)) return {};
+  const AnchorRow& row = w.rows.anchors[w.anchorSlots.position(id.index)];
   AnchorState state;
   state.impulse = row.stepImpulse;
-  state.worldPointOnBody = m_impl->bullet.position(row.body) + m_impl->bullet.orientation(row.body) * row.localPoint;
-  state.worldPointOnDeformable = row.deformablePoint(m_impl->nodes.position);
+  state.worldPointOnBody = w.bullet.position(row.body) + w.bullet.orientation(row.body) * row.localPoint;
+  state.worldPointOnDeformable = row.deformablePoint(w.nodes.position);
   return state;
 }
 
@@ -80,11 +148,11 @@ std::vector<ContactReport> World::contacts() const {
   for (const ContactRow& row : w.rows.contacts) {
     ContactReport report;
     const DeformableRecord& body = w.deformableOfNode(row.node[0]);
-    report.deformable = DeformableId{static_cast<int32_t>(w.deformableIndexOfNode(row.node[0]))};
+    report.deformable = w.deformableId(w.deformableIndexOfNode(row.node[0]));
     if (row.body >= 0)
-      report.rigid = RigidBodyId{row.body};
+      report.rigid = w.rigidId(row.body);
     else
-      report.other = DeformableId{static_cast<int32_t>(w.deformableIndexOfNode(row.node[1]))};
+      report.other = w.deformableId(w.deformableIndexOfNode(row.node[1]));
     for (int k = 0; k < 4; ++k)
       if (row.coefficient[k] > 0) report.point += row.coefficient[k] * w.nodes.position[row.node[k]];
     report.normal = row.normal;

@@ -146,39 +146,100 @@ Result<RigidBodyId> World::addRigidBody(const RigidBodyDesc& desc) {
     return Error{who + ": friction must be >= 0, got " + formatNumber(desc.friction)};
   if (!(desc.restitution >= 0 && desc.restitution <= 1))
     return Error{who + ": restitution must be in [0, 1], got " + formatNumber(desc.restitution)};
-  const int index = m_impl->bullet.addRigidBody(desc);
-  m_impl->rigidNames.push_back(desc.name);
-  m_impl->rigidFriction.push_back(desc.friction);
+  Impl& w = *m_impl;
+  // A removed body's slot is reused (with the next generation), else a new one is made.
+  int32_t slot = w.rigidSlots.firstFree();
+  if (slot < 0) {
+    slot = static_cast<int32_t>(w.rigidSlots.size());
+    w.rigidNames.emplace_back();
+    w.rigidFriction.push_back(0.0);
+    w.rigidShapes.emplace_back();
+    w.rigid.emplace_back();
+    w.rigidGroup.push_back(0);
+    w.rigidMask.push_back(0);
+  }
+  w.bullet.addRigidBody(desc, slot);
+  w.rigidNames[slot] = desc.name;
+  w.rigidFriction[slot] = desc.friction;
   auto shape = std::make_unique<geometry::CollisionShape>();
   shape->shape = desc.shape;
   if (desc.shape.type == ShapeType::ConvexHull) shape->planes = bullet::convexHullPlanes(desc.shape.points);
   if (desc.shape.type == ShapeType::TriangleMesh) shape->grid.build(desc.shape.points, desc.shape.triangles);
-  m_impl->rigidShapes.push_back(std::move(shape));
-  m_impl->rigid.emplace_back();
-  return RigidBodyId{index};
+  w.rigidShapes[slot] = std::move(shape);
+  w.rigid[slot] = RigidSolverState{};
+  w.rigidGroup[slot] = desc.collisionGroup;
+  w.rigidMask[slot] = desc.collisionMask;
+  const IdSlots::Taken taken = w.rigidSlots.addAt(slot);
+  ++w.rigidStructureVersion;
+  w.directBlocksStale = true;
+  return RigidBodyId{taken.index, taken.generation};
 }
 
+namespace {
+Status validateHingeMotion(double lower, double upper, bool motor, double targetSpeed, double maxTorque,
+                           const std::string& who) {
+  if (std::isnan(lower) || std::isnan(upper) || (lower <= upper && (!std::isfinite(lower) || !std::isfinite(upper))))
+    return Error{who + ": limits must be finite (lower > upper for none), got [" + formatNumber(lower) + ", " +
+                 formatNumber(upper) + "]"};
+  if (lower <= upper && (lower < -M_PI || upper > M_PI))
+    return Error{who + ": limits must lie in [-pi, pi] rad, got [" + formatNumber(lower) + ", " +
+                 formatNumber(upper) + "]"};
+  if (motor && !std::isfinite(targetSpeed)) return Error{who + ": motor target speed must be finite"};
+  if (motor && !(std::isfinite(maxTorque) && maxTorque >= 0))
+    return Error{who + ": motor max torque must be >= 0 and finite, got " + formatNumber(maxTorque) + " N·m"};
+  return {};
+}
+}  // namespace
+
 Result<JointId> World::addHinge(const HingeDesc& desc) {
-  if (!m_impl->validRigid(desc.bodyA)) return Error{"hinge: body A does not exist"};
-  if (desc.bodyB && !m_impl->validRigid(*desc.bodyB)) return Error{"hinge: body B does not exist"};
+  Impl& w = *m_impl;
+  if (!w.validRigid(desc.bodyA)) return Error{"hinge: body A: " + w.rigidSlots.check(desc.bodyA.index, desc.bodyA.generation).message()};
+  if (desc.bodyB && !w.validRigid(*desc.bodyB))
+    return Error{"hinge: body B: " + w.rigidSlots.check(desc.bodyB->index, desc.bodyB->generation).message()};
   if (desc.bodyB && *desc.bodyB == desc.bodyA) return Error{"hinge: body A and body B are the same body"};
   if (!desc.pivot.allFinite()) return Error{"hinge: pivot is not finite"};
   if (!desc.axis.allFinite() || desc.axis.norm() < 1e-9) return Error{"hinge: axis must be a finite non-zero vector"};
-  return JointId{m_impl->bullet.addHinge(desc)};
+  if (Status s = validateHingeMotion(desc.lowerLimit, desc.upperLimit, desc.motor, desc.motorTargetSpeed,
+                                     desc.motorMaxTorque, "hinge");
+      !s)
+    return Error{s.message()};
+  int32_t slot = w.jointSlots.firstFree();
+  if (slot < 0) slot = static_cast<int32_t>(w.jointSlots.size());
+  w.bullet.addHinge(desc, slot);
+  const IdSlots::Taken taken = w.jointSlots.addAt(slot);
+  ++w.rigidStructureVersion;
+  return JointId{taken.index, taken.generation};
 }
 
 Result<JointId> World::addFixedJoint(const FixedJointDesc& desc) {
-  if (!m_impl->validRigid(desc.bodyA)) return Error{"fixed joint: body A does not exist"};
-  if (desc.bodyB && !m_impl->validRigid(*desc.bodyB)) return Error{"fixed joint: body B does not exist"};
+  Impl& w = *m_impl;
+  if (!w.validRigid(desc.bodyA))
+    return Error{"fixed joint: body A: " + w.rigidSlots.check(desc.bodyA.index, desc.bodyA.generation).message()};
+  if (desc.bodyB && !w.validRigid(*desc.bodyB))
+    return Error{"fixed joint: body B: " + w.rigidSlots.check(desc.bodyB->index, desc.bodyB->generation).message()};
   if (desc.bodyB && *desc.bodyB == desc.bodyA) return Error{"fixed joint: body A and body B are the same body"};
-  return JointId{m_impl->bullet.addFixedJoint(desc)};
+  int32_t slot = w.jointSlots.firstFree();
+  if (slot < 0) slot = static_cast<int32_t>(w.jointSlots.size());
+  w.bullet.addFixedJoint(desc, slot);
+  const IdSlots::Taken taken = w.jointSlots.addAt(slot);
+  ++w.rigidStructureVersion;
+  return JointId{taken.index, taken.generation};
 }
 
-void World::putRigidToSleep(RigidBodyId body) { m_impl->bullet.putToSleep(body.index); }
-void World::setRigidCanSleep(RigidBodyId body, bool canSleep) { m_impl->bullet.setCanSleep(body.index, canSleep); }
+Status World::putRigidToSleep(RigidBodyId body) {
+  if (Status s = m_impl->rigidSlots.check(body.index, body.generation); !s) return Error{"put to sleep: " + s.message()};
+  m_impl->bullet.putToSleep(body.index);
+  return {};
+}
+Status World::setRigidCanSleep(RigidBodyId body, bool canSleep) {
+  if (Status s = m_impl->rigidSlots.check(body.index, body.generation); !s) return Error{"can sleep: " + s.message()};
+  m_impl->bullet.setCanSleep(body.index, canSleep);
+  return {};
+}
 
 Status World::setKinematicTarget(RigidBodyId body, const Vec3& position, const Quat& orientation) {
-  if (!m_impl->validRigid(body)) return Error{"kinematic target: no rigid body with index " + std::to_string(body.index)};
+  if (Status s = m_impl->rigidSlots.check(body.index, body.generation); !s)
+    return Error{"kinematic target: " + s.message()};
   if (!position.allFinite() || !orientation.coeffs().allFinite() || orientation.norm() < 1e-9)
     return Error{"kinematic target: pose is not finite"};
   m_impl->bullet.setKinematicTarget(body.index, position, orientation);
@@ -289,7 +350,9 @@ Result<DeformableId> World::addDeformable(const DeformableDesc& desc) {
   for (const auto& [i, j] : edges) record.surfaceEdges.push_back({first + i, first + j});
   w.deformables.push_back(std::move(record));
   w.directBlocksStale = true;
-  return DeformableId{static_cast<int32_t>(w.deformables.size()) - 1};
+  // Deformables never reuse a slot: their records stay in node order (deformableOfNode).
+  const IdSlots::Taken taken = w.deformableSlots.add(static_cast<int32_t>(w.deformables.size()) - 1, false);
+  return DeformableId{taken.index, taken.generation};
 }
 
 Status World::setNodeVelocity(DeformableId body, int32_t node, const Vec3& velocity) {
@@ -329,20 +392,23 @@ Result<FixedPointId> World::addFixedPoint(DeformableId body, int32_t node, const
   row.maxForce = maxForce;
   m_impl->rows.fixedPoints.push_back(row);
   m_impl->directBlocksStale = true;
-  return FixedPointId{static_cast<int32_t>(m_impl->rows.fixedPoints.size()) - 1};
+  const IdSlots::Taken taken =
+      m_impl->fixedPointSlots.add(static_cast<int32_t>(m_impl->rows.fixedPoints.size()) - 1, true);
+  return FixedPointId{taken.index, taken.generation};
 }
 
 Status World::setFixedPointTarget(FixedPointId id, const Vec3& target) {
-  if (id.index < 0 || id.index >= static_cast<int32_t>(m_impl->rows.fixedPoints.size()))
-    return Error{"fixed point target: no fixed point with index " + std::to_string(id.index)};
+  if (Status s = m_impl->fixedPointSlots.check(id.index, id.generation); !s)
+    return Error{"fixed point target: " + s.message()};
   if (!target.allFinite()) return Error{"fixed point target: target is not finite"};
-  m_impl->rows.fixedPoints[id.index].target = target;
+  m_impl->rows.fixedPoints[m_impl->fixedPointSlots.position(id.index)].target = target;
   return {};
 }
 
 Result<AnchorId> World::addAnchor(const AnchorDesc& desc) {
   Impl& w = *m_impl;
-  if (!w.validRigid(desc.body)) return Error{"anchor: no rigid body with index " + std::to_string(desc.body.index)};
+  if (!w.validRigid(desc.body))
+    return Error{"anchor: " + w.rigidSlots.check(desc.body.index, desc.body.generation).message()};
   if (!isPositive(desc.maxForce)) return Error{"anchor: max force must be positive, got " + formatNumber(desc.maxForce)};
   Result<Impl::BarycentricPoint> point =
       w.barycentricPoint(desc.deformable, desc.nodes, desc.weights, desc.nodeCount, "anchor");
@@ -362,7 +428,8 @@ Result<AnchorId> World::addAnchor(const AnchorDesc& desc) {
   }
   w.rows.anchors.push_back(row);
   w.directBlocksStale = true;
-  return AnchorId{static_cast<int32_t>(w.rows.anchors.size()) - 1};
+  const IdSlots::Taken taken = w.anchorSlots.add(static_cast<int32_t>(w.rows.anchors.size()) - 1, true);
+  return AnchorId{taken.index, taken.generation};
 }
 
 }  // namespace tandem

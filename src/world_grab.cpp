@@ -21,7 +21,8 @@ Result<GrabId> World::addGrab(const GrabDesc& desc) {
   row.dampingRatio = desc.dampingRatio;
   row.maxForce = desc.maxForce;
   if (desc.body) {
-    if (!w.validRigid(*desc.body)) return Error{"grab: no rigid body with index " + std::to_string(desc.body->index)};
+    if (!w.validRigid(*desc.body))
+      return Error{"grab: " + w.rigidSlots.check(desc.body->index, desc.body->generation).message()};
     if (!w.bullet.isDynamic(desc.body->index))
       return Error{"grab: rigid body '" + w.rigidNames[desc.body->index] + "' is static or kinematic"};
     if (!desc.point.allFinite()) return Error{"grab: point is not finite"};
@@ -46,38 +47,39 @@ Result<GrabId> World::addGrab(const GrabDesc& desc) {
   auto slot = std::find_if(grabs.begin(), grabs.end(), [](const GrabRow& g) { return !g.active; });
   if (slot == grabs.end()) slot = grabs.insert(grabs.end(), row);
   else *slot = row;
-  return GrabId{static_cast<int32_t>(slot - grabs.begin())};
+  const IdSlots::Taken taken = w.grabSlots.addAt(static_cast<int32_t>(slot - grabs.begin()));
+  return GrabId{taken.index, taken.generation};
 }
 
 namespace {
-Status checkGrab(const std::vector<GrabRow>& grabs, GrabId id) {
-  if (id.index < 0 || id.index >= static_cast<int32_t>(grabs.size()) || !grabs[id.index].active)
-    return Error{"grab: no active grab with index " + std::to_string(id.index)};
+Status checkGrab(const IdSlots& slots, GrabId id) {
+  if (Status s = slots.check(id.index, id.generation); !s) return Error{"grab: " + s.message()};
   return {};
 }
 }  // namespace
 
 Status World::setGrabTarget(GrabId id, const Vec3& target) {
-  if (Status s = checkGrab(m_impl->rows.grabs, id); !s) return s;
+  if (Status s = checkGrab(m_impl->grabSlots, id); !s) return s;
   if (!target.allFinite()) return Error{"grab: target is not finite"};
   m_impl->rows.grabs[id.index].target = target;
   return {};
 }
 
 Status World::removeGrab(GrabId id) {
-  if (Status s = checkGrab(m_impl->rows.grabs, id); !s) return s;
+  if (Status s = checkGrab(m_impl->grabSlots, id); !s) return s;
   m_impl->rows.grabs[id.index] = GrabRow{};
+  m_impl->grabSlots.remove(id.index, false);
   return {};
 }
 
 Vec3 World::grabImpulse(GrabId id) const {
   const std::vector<GrabRow>& grabs = m_impl->rows.grabs;
-  return checkGrab(grabs, id) ? grabs[id.index].stepImpulse : Vec3::Zero();
+  return m_impl->lookup(m_impl->grabSlots, id) ? grabs[id.index].stepImpulse : Vec3::Zero();
 }
 
 Vec3 World::grabPoint(GrabId id) const {
   const Impl& w = *m_impl;
-  if (!checkGrab(w.rows.grabs, id)) return Vec3::Zero();
+  if (!w.lookup(w.grabSlots, id)) return Vec3::Zero();
   const GrabRow& row = w.rows.grabs[id.index];
   if (row.onRigid()) return w.bullet.position(row.body) + w.bullet.orientation(row.body) * row.localPoint;
   return row.point(w.nodes.position, nullptr);
@@ -92,7 +94,7 @@ std::optional<RayHit> World::castRay(const Vec3& origin, const Vec3& direction, 
   if (std::isfinite(maxDistance))
     if (auto hit = w.bullet.castRay(origin, origin + maxDistance * d)) {
       best = RayHit{};
-      best->rigid = RigidBodyId{hit->body};
+      best->rigid = w.rigidId(hit->body);
       best->distance = hit->fraction * maxDistance;
       best->point = origin + best->distance * d;
       best->normal = hit->normal.dot(d) > 0 ? Vec3(-hit->normal) : hit->normal;
@@ -106,7 +108,7 @@ std::optional<RayHit> World::castRay(const Vec3& origin, const Vec3& direction, 
       const auto hit = geometry::intersectRayTriangle(origin, d, p0, p1, p2);
       if (!hit || hit->t > maxDistance || (best && hit->t >= best->distance)) continue;
       best = RayHit{};
-      best->deformable = DeformableId{static_cast<int32_t>(b)};
+      best->deformable = w.deformableId(b);
       best->nodes = t;
       best->weights = hit->weights;
       best->distance = hit->t;
@@ -118,6 +120,9 @@ std::optional<RayHit> World::castRay(const Vec3& origin, const Vec3& direction, 
   return best;
 }
 
-const RigidShape& World::rigidShape(RigidBodyId body) const { return m_impl->rigidShapes.at(body.index)->shape; }
+const RigidShape& World::rigidShape(RigidBodyId body) const {
+  static const RigidShape kNoShape;
+  return m_impl->lookup(m_impl->rigidSlots, body) ? m_impl->rigidShapes[body.index]->shape : kNoShape;
+}
 
 }  // namespace tandem

@@ -9,6 +9,7 @@
 #include "collision/contact_motion.h"
 #include "collision/impact_zones.h"
 #include "format.h"
+#include "id_slots.h"
 #include "models/implicit_solve.h"
 #include "models/mass_spring.h"
 #include "models/position_based.h"
@@ -46,6 +47,14 @@ struct DeformableRecord {
   bool implicitStep = false;  // FEM, or mass-spring with implicit springs: stepped by `implicit`
   ImplicitBody implicit;
   Supports supports;  // surfaces its nodes rest on, from last step (models/supports.h)
+  bool removed = false;  // removed: its nodes stay in the arrays, inert (src/world_edit.cpp)
+};
+
+// Last step's impulse of a contact, by feature, for the next step's warm start.
+struct ContactImpulse {
+  double normal;
+  Vec3 friction;
+  bool releasedFromBlock;
 };
 
 class StageClock {
@@ -68,6 +77,15 @@ struct World::Impl final : bullet::SolverHooks {
   std::vector<double> rigidFriction;  // for Tandem's collision detection
   std::vector<std::unique_ptr<geometry::CollisionShape>> rigidShapes;  // shapes with derived data
   std::vector<RigidSolverState> rigid;
+  std::vector<uint32_t> rigidGroup, rigidMask;  // collision filter per rigid body (0, 0 once removed)
+
+  // The slots behind the ids (id_slots.h). A rigid body's and a joint's slot is its index in
+  // Bullet's arrays; a deformable's is its record's; anchors and fixed points are stored densely
+  // in `rows` and grabs in place (a grab's slot is its row).
+  IdSlots rigidSlots{"rigid body"}, deformableSlots{"deformable"}, jointSlots{"joint"}, anchorSlots{"anchor"},
+      fixedPointSlots{"fixed point"}, grabSlots{"grab"};
+  mutable std::string lookupError;  // the first bad id a query met (World::takeLookupError)
+  uint64_t rigidStructureVersion = 0;  // changes as rigid bodies and joints come and go (snapshots check it)
 
   NodeArrays nodes;
   std::vector<DeformableRecord> deformables;
@@ -85,11 +103,6 @@ struct World::Impl final : bullet::SolverHooks {
     Vec3 from, to;  // where a moving target is at the step's start and end
   };
   std::vector<TargetPath> fixedPointPaths, grabPaths;
-  struct ContactImpulse {
-    double normal;
-    Vec3 friction;
-    bool releasedFromBlock;
-  };
   std::unordered_map<uint64_t, ContactImpulse> previousContacts;  // by feature, for warm starting
 
   StepReport report;
@@ -113,7 +126,7 @@ struct World::Impl final : bullet::SolverHooks {
     for (GrabRow& row : rows.grabs) row.stepImpulse.setZero();
     for (AnchorRow& row : rows.anchors) row.stepImpulse.setZero();
     for (RigidSolverState& body : rigid) body.impulse = body.angularImpulse = Vec3::Zero();
-    bullet.clearContactImpulses();
+    bullet.beginStep();
     if (settings.solver.substeps == 1) return;  // what only the substeps read
     stepStartVelocities = nodes.velocity;
     stepStartPoses.resize(static_cast<size_t>(bullet.rigidBodyCount()));
@@ -275,7 +288,8 @@ struct World::Impl final : bullet::SolverHooks {
       if (!body.collision.enabled) continue;
       surfaces.push_back({body.firstNode, body.nodeCount, body.surfaceNodes, body.surfaceTriangles,
                           body.surfaceEdges, body.restMesh.positions, body.collision.thickness,
-                          body.collision.friction, body.collision.selfCollision});
+                          body.collision.friction, body.collision.selfCollision, body.collision.group,
+                          body.collision.mask});
     }
     return surfaces;
   }
@@ -286,7 +300,7 @@ struct World::Impl final : bullet::SolverHooks {
     for (int b = 0; b < bullet.rigidBodyCount(); ++b)
       shapes[b] = {rigidShapes[b].get(),        bullet.position(b),        bullet.orientation(b),
                    bullet.linearVelocity(b),    bullet.angularVelocity(b), rigidFriction[b],
-                   bullet.mass(b)};
+                   bullet.mass(b),              rigidGroup[b],             rigidMask[b]};
     std::unordered_set<uint64_t> anchored;
     for (const AnchorRow& row : rows.anchors)
       for (int k = 0; k < 4; ++k)
@@ -630,9 +644,18 @@ struct World::Impl final : bullet::SolverHooks {
   }
 
   // ---- Lookups ---------------------------------------------------------------------------
-  bool validRigid(RigidBodyId id) const { return id.index >= 0 && id.index < bullet.rigidBodyCount(); }
-  bool validDeformable(DeformableId id) const {
-    return id.index >= 0 && id.index < static_cast<int32_t>(deformables.size());
+  bool validRigid(RigidBodyId id) const { return rigidSlots.live(id.index, id.generation); }
+  bool validDeformable(DeformableId id) const { return deformableSlots.live(id.index, id.generation); }
+  RigidBodyId rigidId(int32_t index) const { return {index, rigidSlots.generation(index)}; }
+  DeformableId deformableId(size_t record) const {
+    return {static_cast<int32_t>(record), deformableSlots.generation(static_cast<int32_t>(record))};
+  }
+  // For queries: true if the id is live; else the error is recorded for takeLookupError.
+  template <class Id>
+  bool lookup(const IdSlots& slots, Id id) const {
+    if (slots.live(id.index, id.generation)) return true;
+    if (lookupError.empty()) lookupError = slots.check(id.index, id.generation).message();
+    return false;
   }
   // A point of a deformable with weights on up to four of its nodes, checked (the count, each
   // node in range, finite weights summing to 1) and in global indices; unused entries repeat
@@ -662,8 +685,8 @@ struct World::Impl final : bullet::SolverHooks {
   }
 
   Result<int32_t> globalNode(DeformableId body, int32_t node, const char* who) const {
-    if (!validDeformable(body)) return Error{std::string(who) + ": no deformable body with index " +
-                                             std::to_string(body.index)};
+    if (!validDeformable(body))
+      return Error{std::string(who) + ": " + deformableSlots.check(body.index, body.generation).message()};
     const DeformableRecord& record = deformables[body.index];
     if (node < 0 || node >= record.nodeCount)
       return Error{std::string(who) + ": node " + std::to_string(node) + " is out of range for deformable '" +

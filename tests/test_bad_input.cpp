@@ -117,10 +117,10 @@ TEST(BadInput, WorldRefusesBadBodiesAndConstraints) {
   const RigidBodyId crate = *world.addRigidBody(body);
 
   EXPECT_ERROR(world.addFixedPoint(id, 9, {0, 0, 0}), "fixed point: node 9 is out of range for deformable 'rope' (4 nodes)");
-  EXPECT_ERROR(world.addFixedPoint(DeformableId{5}, 0, {0, 0, 0}), "no deformable body with index 5");
+  EXPECT_ERROR(world.addFixedPoint(DeformableId{5}, 0, {0, 0, 0}), "fixed point: deformable 5: no such deformable (the world has 1 slot)");
   EXPECT_ERROR(world.addFixedPoint(id, 0, {kNaN, 0, 0}), "target is not finite");
   EXPECT_ERROR(world.addFixedPoint(id, 0, {0, 0, 0}, -3), "max force must be positive, got -3");
-  EXPECT_ERROR(world.addAnchor(AnchorDesc::node(id, 0, RigidBodyId{9})), "anchor: no rigid body with index 9");
+  EXPECT_ERROR(world.addAnchor(AnchorDesc::node(id, 0, RigidBodyId{9})), "anchor: rigid body 9: no such rigid body (the world has 1 slot)");
   EXPECT_ERROR(world.addAnchor(AnchorDesc::node(id, -1, crate)), "node -1 is out of range");
   AnchorDesc anchor = AnchorDesc::node(id, 0, crate);
   anchor.nodeCount = 2;

@@ -128,7 +128,7 @@ TEST(Coupling, SleepingBodyHoldsAndWakesWhenTheRopeMoves) {
     return desc;
   }());
   ASSERT_TRUE(world.addAnchor(AnchorDesc::node(rope, 0, anchorBody)).ok());
-  world.putRigidToSleep(anchorBody);
+  ASSERT_TRUE(world.putRigidToSleep(anchorBody).ok());
   for (int step = 0; step < 60; ++step) ASSERT_TRUE(world.step(kStep).ok());
   // Asleep, the body acts as a fixed support: the rope hangs from it, the body does not move.
   EXPECT_FALSE(world.rigidIsAwake(anchorBody));

@@ -236,6 +236,69 @@ TEST(SceneFile, AnchorsFindTheNearestNodeAndTheFacePoint) {
   EXPECT_LT((world.anchorState(AnchorId{2}).worldPointOnBody - (world.rigidPosition(hull) + Vec3(0, 0.2, 0))).norm(), 1e-12);
 }
 
+// Collision groups and masks, hinge limits and motors: read, written back, and built into a
+// world that acts on them (the ghost falls through the ground; the motor turns its wheel).
+TEST(SceneFile, CollisionFiltersAndHingeMotorsRoundTripAndAct) {
+  const std::string json = R"({"format": 1, "name": "filters",
+    "rigid_bodies": [
+      {"name": "ground", "shape": {"type": "plane", "normal": [0, 1, 0]}, "mass": 0, "collision_group": 2},
+      {"name": "ghost", "shape": {"type": "box", "half_extents": [0.1, 0.1, 0.1]}, "position": [0, 0.5, 0],
+       "collision_mask": 4294967293},
+      {"name": "wheel", "shape": {"type": "cylinder", "radius": 0.3, "half_height": 0.05}, "position": [2, 1, 0],
+       "collision_group": 8, "collision_mask": 0}],
+    "joints": [{"type": "hinge", "body_a": "wheel", "pivot": [2, 1, 0], "axis": [0, 1, 0],
+                "limits": [-3, 3], "motor": {"target_speed": 2, "max_torque": 100}}],
+    "deformables": [{"name": "rope", "mesh": {"type": "rope", "start": [1, 1, 0], "end": [1, 0.5, 0], "nodes": 5},
+                     "mass": 0.1, "collision_group": 16, "collision_mask": 3}]})";
+  Result<Scene> scene = parseScene(json, "filters.json", ".");
+  ASSERT_TRUE(scene.ok()) << scene.message();
+  EXPECT_EQ(scene->rigidBodies[0].desc.collisionGroup, 2u);
+  EXPECT_EQ(scene->rigidBodies[1].desc.collisionMask, 0xFFFFFFFDu);
+  EXPECT_EQ(scene->rigidBodies[1].desc.collisionGroup, 1u);  // the default
+  EXPECT_EQ(scene->deformables[0].desc.collision.group, 16u);
+  EXPECT_EQ(scene->deformables[0].desc.collision.mask, 3u);
+  EXPECT_EQ(scene->joints[0].lowerLimit, -3.0);
+  EXPECT_EQ(scene->joints[0].upperLimit, 3.0);
+  EXPECT_TRUE(scene->joints[0].motor);
+  EXPECT_EQ(scene->joints[0].motorTargetSpeed, 2.0);
+  EXPECT_EQ(scene->joints[0].motorMaxTorque, 100.0);
+  const std::string written = sceneToJson(*scene);
+  EXPECT_NE(written.find("\"collision_mask\": 4294967293"), std::string::npos) << written;
+  EXPECT_NE(written.find("\"limits\": ["), std::string::npos);
+  Result<Scene> reread = parseScene(written, "again.json", ".");
+  ASSERT_TRUE(reread.ok()) << reread.message();
+  EXPECT_EQ(sceneToJson(*reread), written);
+  World world;
+  ASSERT_TRUE(buildScene(*reread, world).ok());
+  EXPECT_EQ(world.rigidCollisionMask(*world.findRigidBody("ghost")), 0xFFFFFFFDu);
+  for (int step = 0; step < 60; ++step) ASSERT_TRUE(world.step(1.0 / 60).ok());
+  EXPECT_LT(world.rigidPosition(*world.findRigidBody("ghost")).y(), -1.0);
+  EXPECT_NEAR(world.hingeSpeed(JointId{0}), 2.0, 0.01);
+
+  for (const auto& [text, message] : std::vector<std::pair<std::string, std::string>>{
+           {R"("collision_group": -1)", "/rigid_bodies/0/collision_group: must be an integer in [0, 4294967295]"},
+           {R"("collision_mask": 4294967296)", "/rigid_bodies/0/collision_mask: must be an integer in [0, 4294967295]"},
+           {R"("collision_mask": 1.5)", "/rigid_bodies/0/collision_mask: must be an integer"}}) {
+    const std::string bad = R"({"format": 1, "name": "bad", "rigid_bodies": [{"name": "b",
+      "shape": {"type": "sphere", "radius": 0.1}, )" + text + "}]}";
+    Result<Scene> refused = parseScene(bad, "bad.json", ".");
+    ASSERT_FALSE(refused.ok());
+    EXPECT_NE(refused.message().find(message), std::string::npos) << refused.message();
+  }
+  for (const auto& [text, message] : std::vector<std::pair<std::string, std::string>>{
+           {R"("type": "hinge", "pivot": [0, 0, 0], "axis": [0, 0, 1], "limits": [1, -1])",
+            "/joints/0/limits: must be [lower, upper] with -pi <= lower <= upper <= pi rad, got [1, -1]"},
+           {R"("type": "hinge", "pivot": [0, 0, 0], "axis": [0, 0, 1], "motor": {"target_speed": 1})",
+            "/joints/0/motor: missing field 'max_torque'"},
+           {R"("type": "fixed", "limits": [0, 1])", "/joints/0/limits: only a hinge has limits and a motor"}}) {
+    const std::string bad = R"({"format": 1, "name": "bad", "rigid_bodies": [{"name": "b",
+      "shape": {"type": "sphere", "radius": 0.1}}], "joints": [{"body_a": "b", )" + text + "}]}";
+    Result<Scene> refused = parseScene(bad, "bad.json", ".");
+    ASSERT_FALSE(refused.ok());
+    EXPECT_NE(refused.message().find(message), std::string::npos) << refused.message();
+  }
+}
+
 TEST(SceneFile, FixedJointsHoldTheirPose) {
   Scene scene;
   // Bullet solves joints iteratively: a 0.5 m lever on two fixed joints sags 14 cm at 4

@@ -53,6 +53,9 @@ struct SceneJoint {
   std::optional<std::string> bodyB;  // unset: to the world
   Vec3 pivot = Vec3::Zero();         // hinge, world frame
   Vec3 axis = Vec3::UnitZ();         // hinge, world frame
+  double lowerLimit = 1.0, upperLimit = -1.0;  // hinge, rad; lower > upper: none (HingeDesc)
+  bool motor = false;                          // hinge
+  double motorTargetSpeed = 0.0, motorMaxTorque = 0.0;
 };
 
 // Nodes of a deformable held where they start by fixed-point rows: listed, or every node

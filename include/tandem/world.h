@@ -21,26 +21,64 @@
 
 namespace tandem {
 
+// ---- Ids and what a bad id gets --------------------------------------------------------------
+//
+// Every id is a slot index and a generation. Removing a thing frees its slot; a rigid body,
+// joint, anchor, fixed point or grab added later may take the slot with the next generation
+// (deformables never reuse a slot). An id is live while its slot holds that generation: an id
+// of something removed, or of a slot since reused, is stale and is refused, never taken for
+// whatever the slot holds now.
+//
+// One rule for every call that takes an id:
+//  - A call that returns Status or Result refuses a bad or stale id with an error naming it
+//    ("rigid body 7: no such rigid body (the world has 3 slots)", "anchor 2 (generation 0) was
+//    removed"), and changes nothing.
+//  - A query that returns a value (rigidPosition, nodePositions, anchorState, ...) has a live id
+//    as its precondition. Given a bad or stale id it returns a neutral value (zero vectors, the
+//    identity rotation, 0, false, an empty span or string) and records the error, which
+//    takeLookupError() hands back. This holds in every build type: nothing asserts, throws or
+//    crashes. Check an id beforehand with contains().
+// Ids made from a bare index (RigidBodyId{3}) carry generation 0: they name the slot's first
+// occupant.
 struct RigidBodyId {
   int32_t index = -1;
+  uint32_t generation = 0;
   friend bool operator==(RigidBodyId, RigidBodyId) = default;
 };
 struct DeformableId {
   int32_t index = -1;
+  uint32_t generation = 0;
   friend bool operator==(DeformableId, DeformableId) = default;
 };
 struct AnchorId {
   int32_t index = -1;
+  uint32_t generation = 0;
+  friend bool operator==(AnchorId, AnchorId) = default;
 };
 struct FixedPointId {
   int32_t index = -1;
+  uint32_t generation = 0;
+  friend bool operator==(FixedPointId, FixedPointId) = default;
 };
 struct JointId {
   int32_t index = -1;
+  uint32_t generation = 0;
+  friend bool operator==(JointId, JointId) = default;
 };
 struct GrabId {
   int32_t index = -1;
+  uint32_t generation = 0;
+  friend bool operator==(GrabId, GrabId) = default;
 };
+
+// Collision filtering: two things (rigid bodies or deformables) collide when
+// (groupA & maskB) != 0 and (groupB & maskA) != 0. By default everything is in group 1 and
+// collides with all groups. A deformable's contacts with itself are governed by selfCollision.
+inline constexpr uint32_t kDefaultCollisionGroup = 1;
+inline constexpr uint32_t kAllCollisionGroups = 0xFFFFFFFFu;
+inline bool collisionGroupsMeet(uint32_t groupA, uint32_t maskA, uint32_t groupB, uint32_t maskB) {
+  return (groupA & maskB) != 0 && (groupB & maskA) != 0;
+}
 
 inline constexpr double kUnbounded = std::numeric_limits<double>::infinity();
 
@@ -109,15 +147,41 @@ struct RigidBodyDesc {
   // to a deformable never falls asleep on its own; put to sleep, it wakes when the deformable
   // moves.)
   bool canSleep = true;
+  uint32_t collisionGroup = kDefaultCollisionGroup;  // see collisionGroupsMeet
+  uint32_t collisionMask = kAllCollisionGroups;
 };
 
 // A revolute joint about `axis` through `pivot` (both world frame, at creation time),
 // between `bodyA` and `bodyB`, or between `bodyA` and the world when bodyB is unset.
+//
+// Its angle is bodyA's rotation about the axis relative to bodyB (or the world) since the hinge
+// was made, right-handed about `axis`, in radians; its speed is the rate of that angle.
+// Limits keep the angle in [lowerLimit, upperLimit] (lowerLimit > upperLimit: no limit); the
+// motor drives the speed towards motorTargetSpeed with at most motorMaxTorque (N·m), both
+// through Bullet's btHingeConstraint.
 struct HingeDesc {
   RigidBodyId bodyA;
   std::optional<RigidBodyId> bodyB;
   Vec3 pivot = Vec3::Zero();
   Vec3 axis{0.0, 0.0, 1.0};
+  double lowerLimit = 1.0;  // rad; the default (lower > upper) is no limit
+  double upperLimit = -1.0;
+  bool motor = false;
+  double motorTargetSpeed = 0.0;  // rad/s
+  double motorMaxTorque = 0.0;    // N·m
+};
+
+// One contact point between two rigid bodies (Bullet's) in the last step. Impulses are on
+// bodyA; bodyB got the opposite. With n substeps each substep's points are listed, so the
+// impulses of all points of a pair sum to what the pair exchanged over the step.
+struct RigidContact {
+  RigidBodyId bodyA, bodyB;
+  Vec3 pointOnA = Vec3::Zero();  // world frame, m
+  Vec3 pointOnB = Vec3::Zero();
+  Vec3 normal = Vec3::UnitY();   // from B to A
+  double distance = 0.0;         // m, negative when penetrating
+  double normalImpulse = 0.0;    // N·s, >= 0
+  Vec3 frictionImpulse = Vec3::Zero();  // N·s, tangential
 };
 
 // Holds `bodyA` to `bodyB` (or to the world when bodyB is unset) in their pose at creation time.
@@ -191,6 +255,8 @@ struct CollisionSettings {
   bool selfCollision = false;  // against itself, away from its own neighbourhood
   double thickness = 0.005;    // m: the surface is kept this far from anything it touches
   double friction = 0.5;       // μ; a contact's μ is the product of both sides'
+  uint32_t group = kDefaultCollisionGroup;  // see collisionGroupsMeet
+  uint32_t mask = kAllCollisionGroups;
 };
 
 struct DeformableDesc {
@@ -271,6 +337,27 @@ struct RayHit {
   double distance = 0.0;        // m from the origin along the (normalised) direction
 };
 
+// A copy of a world's whole state (World::snapshot): see World::restore.
+class WorldSnapshot {
+ public:
+  WorldSnapshot();
+  ~WorldSnapshot();
+  WorldSnapshot(WorldSnapshot&&) noexcept;
+  WorldSnapshot& operator=(WorldSnapshot&&) noexcept;
+  WorldSnapshot(const WorldSnapshot&) = delete;
+  WorldSnapshot& operator=(const WorldSnapshot&) = delete;
+  bool empty() const;      // default-made: holds no state
+  double time() const;     // the world's time when it was taken
+  int64_t stepCount() const;
+
+  struct Data;
+  explicit WorldSnapshot(std::unique_ptr<Data> data);
+  const Data* data() const { return m_data.get(); }
+
+ private:
+  std::unique_ptr<Data> m_data;
+};
+
 class World {
  public:
   World();  // default settings; change them with setSettings
@@ -282,26 +369,63 @@ class World {
   Status setSettings(const WorldSettings& settings);
   const WorldSettings& settings() const;
 
-  // Rigid bodies and joints
+  // ---- Ids (see "Ids and what a bad id gets" above) ----
+  bool contains(RigidBodyId id) const;  // live: added and not removed since
+  bool contains(DeformableId id) const;
+  bool contains(JointId id) const;
+  bool contains(AnchorId id) const;
+  bool contains(FixedPointId id) const;
+  bool contains(GrabId id) const;
+  // The first bad-id error a value-returning query recorded since the last call (ok if none);
+  // the record is cleared.
+  Status takeLookupError() const;
+
+  // ---- Rigid bodies and joints ----
   Result<RigidBodyId> addRigidBody(const RigidBodyDesc& desc);
   Result<JointId> addHinge(const HingeDesc& desc);
   Result<JointId> addFixedJoint(const FixedJointDesc& desc);
-  int rigidBodyCount() const;
+  int rigidBodyCount() const;                // live bodies
+  std::vector<RigidBodyId> rigidBodies() const;  // the live bodies' ids, by index
   std::optional<RigidBodyId> findRigidBody(std::string_view name) const;
   const std::string& rigidName(RigidBodyId body) const;
-  Vec3 rigidPosition(RigidBodyId body) const;
+  Vec3 rigidPosition(RigidBodyId body) const;  // centre of mass, world frame
   Quat rigidOrientation(RigidBodyId body) const;
   Vec3 rigidLinearVelocity(RigidBodyId body) const;
   Vec3 rigidAngularVelocity(RigidBodyId body) const;
   double rigidMass(RigidBodyId body) const;  // 0 for static and kinematic bodies
   Mat3 rigidInertia(RigidBodyId body) const;  // kg·m², world frame, about the centre of mass; 0 if not dynamic
   bool rigidIsAwake(RigidBodyId body) const;
-  void putRigidToSleep(RigidBodyId body);
-  void setRigidCanSleep(RigidBodyId body, bool canSleep);
+  Status putRigidToSleep(RigidBodyId body);
+  Status setRigidCanSleep(RigidBodyId body, bool canSleep);
   // Moves a kinematic body to this pose by the end of the next step (its velocity follows).
   Status setKinematicTarget(RigidBodyId body, const Vec3& position, const Quat& orientation);
+
+  // Pushing a dynamic body. Forces (N) and torques (N·m) accumulate until the next step and act
+  // uniformly over it (every substep), then are cleared; impulses (N·s) change the velocity at
+  // once: Δv = J/m, Δω = I⁻¹ (r × J) with r from the centre of mass to the point. Points are
+  // in the world frame. Each wakes the body. Static and kinematic bodies are refused.
+  Status applyForce(RigidBodyId body, const Vec3& force);  // at the centre of mass
+  Status applyForceAtPoint(RigidBodyId body, const Vec3& force, const Vec3& point);
+  Status applyTorque(RigidBodyId body, const Vec3& torque);
+  Status applyImpulse(RigidBodyId body, const Vec3& impulse);  // at the centre of mass
+  Status applyImpulseAtPoint(RigidBodyId body, const Vec3& impulse, const Vec3& point);
+  Status applyAngularImpulse(RigidBodyId body, const Vec3& angularImpulse);  // N·m·s: Δω = I⁻¹ L
+  // Velocities of a dynamic body (m/s; rad/s, world frame); wakes it.
+  Status setRigidLinearVelocity(RigidBodyId body, const Vec3& velocity);
+  Status setRigidAngularVelocity(RigidBodyId body, const Vec3& velocity);
+  // Teleports a body (any motion type) to a pose: centre of mass and orientation, world frame.
+  // Velocities are kept; a dynamic body is woken; a kinematic body's target becomes this pose.
+  // Anchors and joints on it pull it back towards what they hold in the next step.
+  Status setRigidPose(RigidBodyId body, const Vec3& position, const Quat& orientation);
+  // Who collides with the body from now on (see collisionGroupsMeet).
+  Status setRigidCollisionFilter(RigidBodyId body, uint32_t group, uint32_t mask);
+  uint32_t rigidCollisionGroup(RigidBodyId body) const;
+  uint32_t rigidCollisionMask(RigidBodyId body) const;
+
   // Sum of the normal impulses (N·s) of Bullet's contacts between two rigid bodies in the last step.
   double rigidContactImpulse(RigidBodyId a, RigidBodyId b) const;
+  // Every contact point between rigid bodies in the last step (see RigidContact).
+  std::vector<RigidContact> rigidContacts() const;
   // Total impulse (N·s) and angular impulse about the centre of mass (N·m·s) that Tandem's
   // rows put on a rigid body in the last step.
   Vec3 deformableImpulseOnRigid(RigidBodyId body) const;
@@ -310,9 +434,16 @@ class World {
   Vec3 deformableForceOnRigid(RigidBodyId body) const;
   Vec3 deformableTorqueOnRigid(RigidBodyId body) const;
 
-  // Deformable bodies
+  // Hinges (joints made by addHinge; a fixed joint's id is refused): see HingeDesc.
+  Status setHingeLimits(JointId hinge, double lower, double upper);  // lower > upper: no limit
+  Status setHingeMotor(JointId hinge, bool enabled, double targetSpeed, double maxTorque);
+  double hingeAngle(JointId hinge) const;  // rad
+  double hingeSpeed(JointId hinge) const;  // rad/s
+
+  // ---- Deformable bodies ----
   Result<DeformableId> addDeformable(const DeformableDesc& desc);
-  int deformableCount() const;
+  int deformableCount() const;                   // live deformables
+  std::vector<DeformableId> deformableIds() const;  // the live deformables' ids, by index
   std::optional<DeformableId> findDeformable(std::string_view name) const;
   const std::string& deformableName(DeformableId body) const;
   std::span<const Vec3> nodePositions(DeformableId body) const;
@@ -324,8 +455,10 @@ class World {
   Status setNodePosition(DeformableId body, int32_t node, const Vec3& position);
   // Pins a node where it is: its inverse mass becomes zero.
   Status fixNode(DeformableId body, int32_t node);
+  // Who the deformable's surface collides with from now on (see collisionGroupsMeet).
+  Status setDeformableCollisionFilter(DeformableId body, uint32_t group, uint32_t mask);
 
-  // Constraints between a deformable and the world or a rigid body
+  // ---- Constraints between a deformable and the world or a rigid body ----
   Result<FixedPointId> addFixedPoint(DeformableId body, int32_t node, const Vec3& target,
                                      double maxForce = kUnbounded);
   Status setFixedPointTarget(FixedPointId id, const Vec3& target);  // kinematic target
@@ -333,7 +466,18 @@ class World {
   Result<AnchorId> addAnchor(const AnchorDesc& desc);
   AnchorState anchorState(AnchorId id) const;
 
-  // Grabs (one at a time or many; a removed grab's id may be reused by the next one added)
+  // ---- Removal ----
+  // Each takes the thing out of the world with everything that refers to it: a rigid body's
+  // joints, anchors, grabs and contacts (Bullet's and Tandem's); a deformable's springs, rows,
+  // fixed points, anchors, grabs and contacts. Warm-start impulses of what remains are kept.
+  // The removed ids (and those of what went with them) are refused from then on.
+  Status removeRigidBody(RigidBodyId body);
+  Status removeDeformable(DeformableId body);
+  Status removeJoint(JointId joint);
+  Status removeAnchor(AnchorId anchor);
+  Status removeFixedPoint(FixedPointId fixedPoint);
+
+  // ---- Grabs (one at a time or many) ----
   Result<GrabId> addGrab(const GrabDesc& desc);
   Status setGrabTarget(GrabId id, const Vec3& target);
   Status removeGrab(GrabId id);
@@ -350,13 +494,26 @@ class World {
   // Contacts of deformable surfaces in the last step.
   std::vector<ContactReport> contacts() const;
 
-  // Stepping. A step that produces a non-finite state returns an error naming the body and
-  // node (or rigid body) and leaves the world in that state for inspection.
+  // ---- Stepping ----
+  // A step that produces a non-finite state returns an error naming the body and node (or
+  // rigid body) and leaves the world in that state for inspection.
   Status step(double timeStep);
   const StepReport& lastReport() const;
   double time() const;  // simulated seconds so far
   int64_t stepCount() const;
   double lastTimeStep() const;  // h of the last step (0 before the first): impulses / h are forces
+
+  // ---- Save and restore ----
+  // A copy of the whole state the next step reads: rigid bodies (pose, velocities, sleep state,
+  // forces applied since the last step, Bullet's contact points with their warm-start
+  // impulses), deformables (nodes, models' state, supports), every row with its warm-start
+  // impulse, grabs' and fixed points' targets, settings, time. restore() puts it back: stepping
+  // on from there repeats, bit for bit, what stepping on from the snapshot did (see
+  // docs/architecture.md for the one Bullet state that is rebuilt rather than copied).
+  // A snapshot restores only into the world it was taken from, and only while that world holds
+  // the same things (adding or removing anything since makes restore refuse).
+  WorldSnapshot snapshot() const;
+  Status restore(const WorldSnapshot& snapshot);
 
   // Momentum of every dynamic thing in the world (deformable nodes with finite mass and dynamic
   // rigid bodies), for checking conservation.

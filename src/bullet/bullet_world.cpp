@@ -1,7 +1,5 @@
-#include "bullet/bullet_world.h"
+#include "bullet/bullet_world_impl.h"
 
-#include <btBulletDynamicsCommon.h>
-#include <BulletCollision/CollisionDispatch/btSimulationIslandManager.h>
 #include <LinearMath/btConvexHullComputer.h>
 
 #include <algorithm>
@@ -9,108 +7,6 @@
 #include <vector>
 
 namespace tandem::bullet {
-namespace {
-
-// Collision margin of convex hulls and triangle meshes, which Bullet puts outside the shape (m).
-constexpr btScalar kHullMargin = 0.002;
-
-btVector3 toBt(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
-Vec3 fromBt(const btVector3& v) { return {v.x(), v.y(), v.z()}; }
-btQuaternion toBt(const Quat& q) { return {q.x(), q.y(), q.z(), q.w()}; }
-Quat fromBt(const btQuaternion& q) { return Quat(q.w(), q.x(), q.y(), q.z()); }
-Mat3 fromBt(const btMatrix3x3& m) {
-  Mat3 out;
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) out(r, c) = m[r][c];
-  return out;
-}
-
-// Bullet's sequential-impulse solver with Tandem's sweep after each of its iterations.
-// Bullet's own loop may stop early once its residual is small; this one always runs the
-// requested count, because Tandem's rows need every sweep even when Bullet has nothing to do.
-class CoupledSolver final : public btSequentialImpulseConstraintSolver {
- public:
-  SolverHooks* hooks = nullptr;
-
-  btAlignedObjectArray<btSolverBody>& solverBodies() { return m_tmpSolverBodyPool; }
-
- protected:
-  btScalar solveGroupCacheFriendlySetup(btCollisionObject** bodies, int numBodies, btPersistentManifold** manifolds,
-                                        int numManifolds, btTypedConstraint** constraints, int numConstraints,
-                                        const btContactSolverInfo& info, btIDebugDraw* debugDrawer) override {
-    const btScalar result = btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySetup(
-        bodies, numBodies, manifolds, numManifolds, constraints, numConstraints, info, debugDrawer);
-    if (hooks) hooks->afterSetup();
-    return result;
-  }
-
-  btScalar solveGroupCacheFriendlyIterations(btCollisionObject** bodies, int numBodies,
-                                             btPersistentManifold** manifolds, int numManifolds,
-                                             btTypedConstraint** constraints, int numConstraints,
-                                             const btContactSolverInfo& info, btIDebugDraw* debugDrawer) override {
-    solveGroupCacheFriendlySplitImpulseIterations(bodies, numBodies, manifolds, numManifolds, constraints,
-                                                  numConstraints, info, debugDrawer);
-    for (int iteration = 0; iteration < info.m_numIterations; ++iteration) {
-      m_leastSquaresResidual = solveSingleIteration(iteration, bodies, numBodies, manifolds, numManifolds,
-                                                    constraints, numConstraints, info, debugDrawer);
-      if (hooks) hooks->afterIteration(iteration);
-    }
-    return 0;
-  }
-};
-
-// Exposes the protected stages of Bullet's step so Tandem can call them in its own order.
-class SteppedDynamicsWorld final : public btDiscreteDynamicsWorld {
- public:
-  using btDiscreteDynamicsWorld::btDiscreteDynamicsWorld;
-
-  void predict(btScalar h) {
-    saveKinematicState(h);
-    applyGravity();
-    predictUnconstraintMotion(h);
-    getDispatchInfo().m_timeStep = h;
-    getDispatchInfo().m_stepCount = 0;
-    getDispatchInfo().m_debugDraw = getDebugDrawer();
-    createPredictiveContacts(h);
-  }
-
-  void detect() {
-    performDiscreteCollisionDetection();
-    calculateSimulationIslands();
-  }
-
-  // One solver call over every body, manifold and joint: Tandem's sweep then runs once per
-  // iteration for the whole scene. Islands are still built so that sleeping works.
-  void solveAll(btScalar h) {
-    getSolverInfo().m_timeStep = h;
-    m_islandManager->buildIslands(getDispatcher(), getCollisionWorld());
-    m_enabledJoints.clear();
-    for (int i = 0; i < getNumConstraints(); ++i)
-      if (getConstraint(i)->isEnabled()) m_enabledJoints.push_back(getConstraint(i));
-    btCollisionObjectArray& objects = getCollisionObjectArray();
-    const int manifoldCount = getDispatcher()->getNumManifolds();
-    m_constraintSolver->prepareSolve(objects.size(), manifoldCount);
-    m_constraintSolver->solveGroup(objects.size() ? &objects[0] : nullptr, objects.size(),
-                                   manifoldCount ? getDispatcher()->getInternalManifoldPointer() : nullptr,
-                                   manifoldCount, m_enabledJoints.empty() ? nullptr : m_enabledJoints.data(),
-                                   static_cast<int>(m_enabledJoints.size()), getSolverInfo(), getDebugDrawer(),
-                                   getDispatcher());
-    m_constraintSolver->allSolved(getSolverInfo(), getDebugDrawer());
-  }
-
-  void finish(btScalar h) {
-    integrateTransforms(h);
-    updateActions(h);
-    updateActivationState(h);
-    clearForces();
-    synchronizeMotionStates();
-  }
-
- private:
-  std::vector<btTypedConstraint*> m_enabledJoints;
-};
-
-}  // namespace
 
 std::vector<Eigen::Vector4d> convexHullPlanes(const std::vector<Vec3>& points) {
   btConvexHullComputer computer;
@@ -139,40 +35,6 @@ std::vector<Eigen::Vector4d> convexHullPlanes(const std::vector<Vec3>& points) {
   return planes;
 }
 
-struct BulletWorld::Impl {
-  btDefaultCollisionConfiguration configuration;
-  btCollisionDispatcher dispatcher{&configuration};
-  btDbvtBroadphase broadphase;
-  CoupledSolver solver;
-  SteppedDynamicsWorld world{&dispatcher, &broadphase, &solver, &configuration};
-
-  std::vector<std::unique_ptr<btCollisionShape>> shapes;
-  std::vector<std::unique_ptr<btDefaultMotionState>> motionStates;
-  std::vector<std::unique_ptr<btRigidBody>> bodies;
-  std::vector<std::unique_ptr<btTypedConstraint>> joints;
-  std::vector<std::vector<btScalar>> meshVertices;  // kept alive for Bullet's triangle meshes
-  std::vector<std::vector<int>> meshIndices;
-  std::vector<std::unique_ptr<btTriangleIndexVertexArray>> meshArrays;
-  struct PairImpulse {
-    int bodyA, bodyB;  // bodyA < bodyB
-    double impulse;    // N·s, summed over the step's solves
-  };
-  std::vector<PairImpulse> pairImpulses;  // reused from step to step
-  std::vector<RigidSolverState::LockedRows> lockedRows;  // per body, reused (restrictJointedBodies)
-  std::vector<int> weldGroup;
-
-  ~Impl() {
-    for (int i = world.getNumConstraints() - 1; i >= 0; --i) world.removeConstraint(world.getConstraint(i));
-    for (auto& body : bodies) world.removeRigidBody(body.get());
-  }
-
-  const btSolverBody* solverBody(int body) const {
-    const int id = bodies[body]->getCompanionId();
-    if (id < 0) return nullptr;  // static: Bullet shares one fixed solver body and sets no id
-    return &const_cast<CoupledSolver&>(solver).solverBodies()[id];
-  }
-};
-
 BulletWorld::BulletWorld(const Vec3& gravity) : m_impl(std::make_unique<Impl>()) {
   m_impl->world.setGravity(toBt(gravity));
   m_impl->world.getSimulationIslandManager()->setSplitIslands(false);
@@ -182,7 +44,7 @@ BulletWorld::~BulletWorld() = default;
 
 void BulletWorld::setGravity(const Vec3& gravity) { m_impl->world.setGravity(toBt(gravity)); }
 
-int BulletWorld::addRigidBody(const RigidBodyDesc& desc) {
+int BulletWorld::addRigidBody(const RigidBodyDesc& desc, int slot) {
   std::unique_ptr<btCollisionShape> shape;
   const RigidShape& s = desc.shape;
   switch (s.type) {
@@ -238,16 +100,35 @@ int BulletWorld::addRigidBody(const RigidBodyDesc& desc) {
     body->setLinearVelocity(toBt(desc.linearVelocity));
     body->setAngularVelocity(toBt(desc.angularVelocity));
   }
-  body->setUserIndex(static_cast<int>(m_impl->bodies.size()));  // for ray casts
-  m_impl->world.addRigidBody(body.get());
+  body->setUserIndex(slot);  // for ray casts and contact reports
+  m_impl->world.addRigidBody(body.get(), static_cast<int>(desc.collisionGroup), static_cast<int>(desc.collisionMask));
 
-  m_impl->shapes.push_back(std::move(shape));
-  m_impl->motionStates.push_back(std::move(motionState));
-  m_impl->bodies.push_back(std::move(body));
-  return static_cast<int>(m_impl->bodies.size()) - 1;
+  Impl& w = *m_impl;
+  if (slot == static_cast<int>(w.bodies.size())) {
+    w.shapes.emplace_back();
+    w.motionStates.emplace_back();
+    w.bodies.emplace_back();
+    for (auto* v : {&w.pendingForce, &w.pendingTorque, &w.stepForce, &w.stepTorque}) v->push_back(Vec3::Zero());
+    w.removed.push_back(0);
+  }
+  w.shapes[slot] = std::move(shape);
+  w.motionStates[slot] = std::move(motionState);
+  w.bodies[slot] = std::move(body);
+  for (auto* v : {&w.pendingForce, &w.pendingTorque, &w.stepForce, &w.stepTorque}) (*v)[slot].setZero();
+  w.removed[slot] = 0;
+  return slot;
 }
 
-int BulletWorld::addHinge(const HingeDesc& desc) {
+namespace {
+// Puts a joint into its slot (a removed one, or a new one at the end).
+void placeJoint(std::vector<std::unique_ptr<btTypedConstraint>>& joints, int slot,
+                std::unique_ptr<btTypedConstraint> joint) {
+  if (slot == static_cast<int>(joints.size())) joints.emplace_back();
+  joints[slot] = std::move(joint);
+}
+}  // namespace
+
+int BulletWorld::addHinge(const HingeDesc& desc, int slot) {
   btRigidBody& a = *m_impl->bodies[desc.bodyA.index];
   const btVector3 pivot = toBt(desc.pivot);
   const btVector3 axis = toBt(desc.axis.normalized());
@@ -262,29 +143,57 @@ int BulletWorld::addHinge(const HingeDesc& desc) {
     hinge = std::make_unique<btHingeConstraint>(a, aInverse * pivot, aInverse.getBasis() * axis);
   }
   m_impl->world.addConstraint(hinge.get(), true);
-  m_impl->joints.push_back(std::move(hinge));
-  return static_cast<int>(m_impl->joints.size()) - 1;
+  placeJoint(m_impl->joints, slot, std::move(hinge));
+  if (slot == static_cast<int>(m_impl->isHinge.size())) {
+    m_impl->isHinge.push_back(0);
+    m_impl->motorMaxTorque.push_back(0.0);
+  }
+  m_impl->isHinge[slot] = 1;
+  setHingeLimits(slot, desc.lowerLimit, desc.upperLimit);
+  setHingeMotor(slot, desc.motor, desc.motorTargetSpeed, desc.motorMaxTorque);
+  return slot;
 }
 
-int BulletWorld::addFixedJoint(const FixedJointDesc& desc) {
+int BulletWorld::addFixedJoint(const FixedJointDesc& desc, int slot) {
   btRigidBody& a = *m_impl->bodies[desc.bodyA.index];
   btRigidBody& b = desc.bodyB ? *m_impl->bodies[desc.bodyB->index] : btTypedConstraint::getFixedBody();
   // Frames: A's own, and where A is now in B's frame, so the joint holds the present pose.
   const btTransform frameInB = b.getCenterOfMassTransform().inverse() * a.getCenterOfMassTransform();
   auto joint = std::make_unique<btFixedConstraint>(a, b, btTransform::getIdentity(), frameInB);
   m_impl->world.addConstraint(joint.get(), true);
-  m_impl->joints.push_back(std::move(joint));
-  return static_cast<int>(m_impl->joints.size()) - 1;
+  placeJoint(m_impl->joints, slot, std::move(joint));
+  if (slot == static_cast<int>(m_impl->isHinge.size())) {
+    m_impl->isHinge.push_back(0);
+    m_impl->motorMaxTorque.push_back(0.0);
+  }
+  m_impl->isHinge[slot] = 0;
+  return slot;
 }
 
 int BulletWorld::rigidBodyCount() const { return static_cast<int>(m_impl->bodies.size()); }
+int BulletWorld::jointSlotCount() const { return static_cast<int>(m_impl->joints.size()); }
 
-void BulletWorld::predictRigidMotion(double timeStep) { m_impl->world.predict(timeStep); }
+// Gravity, then the forces the user applied for this step (Bullet's own accumulators are
+// cleared after each substep's integration, so they are applied again in each substep).
+void BulletWorld::predictRigidMotion(double timeStep) {
+  Impl& w = *m_impl;
+  for (size_t b = 0; b < w.bodies.size(); ++b) {
+    if (w.stepForce[b].isZero() && w.stepTorque[b].isZero()) continue;
+    w.bodies[b]->applyCentralForce(toBt(w.stepForce[b]));
+    w.bodies[b]->applyTorque(toBt(w.stepTorque[b]));
+  }
+  w.world.predict(timeStep);
+}
 
 void BulletWorld::detectCollisions(double) { m_impl->world.detect(); }
 
 void BulletWorld::solve(double timeStep, int iterations, SolverHooks& hooks) {
   m_impl->world.getSolverInfo().m_numIterations = iterations;
+  for (size_t j = 0; j < m_impl->joints.size(); ++j)  // a motor's bound is an impulse per solve
+    if (m_impl->isHinge[j] && m_impl->joints[j]) {
+      auto& hinge = static_cast<btHingeConstraint&>(*m_impl->joints[j]);
+      hinge.setMaxMotorImpulse(m_impl->motorMaxTorque[j] * timeStep);
+    }
   m_impl->solver.hooks = &hooks;
   m_impl->world.solveAll(timeStep);
   m_impl->solver.hooks = nullptr;
@@ -333,7 +242,7 @@ void BulletWorld::restrictJointedBodies(std::span<RigidSolverState> states) cons
   };
   bool anyWorldJoint = false, anyWeld = false;
   for (const auto& joint : m_impl->joints) {
-    if (!joint->isEnabled()) continue;
+    if (!joint || !joint->isEnabled()) continue;
     const int a = indexOf(joint->getRigidBodyA()), b = indexOf(joint->getRigidBodyB());
     if (movable(a) && movable(b)) {
       if (dynamic_cast<const btFixedConstraint*>(joint.get())) {
@@ -352,7 +261,7 @@ void BulletWorld::restrictJointedBodies(std::span<RigidSolverState> states) cons
   std::vector<RigidSolverState::LockedRows>& locked = m_impl->lockedRows;
   locked.assign(states.size(), RigidSolverState::LockedRows(0, 6));
   for (const auto& joint : m_impl->joints) {
-    if (!joint->isEnabled()) continue;
+    if (!joint || !joint->isEnabled()) continue;
     const int a = indexOf(joint->getRigidBodyA()), b = indexOf(joint->getRigidBodyB());
     if (movable(a) == movable(b)) continue;
     const bool onA = movable(a);
@@ -460,18 +369,34 @@ void BulletWorld::setKinematicTarget(int body, const Vec3& position, const Quat&
   m_impl->motionStates[body]->setWorldTransform(btTransform(toBt(orientation.normalized()), toBt(position)));
 }
 
-void BulletWorld::clearContactImpulses() { m_impl->pairImpulses.clear(); }
+void BulletWorld::beginStep() {
+  Impl& w = *m_impl;
+  w.pairImpulses.clear();
+  w.contactPoints.clear();
+  w.stepForce.swap(w.pendingForce);
+  w.stepTorque.swap(w.pendingTorque);
+  for (Vec3& f : w.pendingForce) f.setZero();
+  for (Vec3& t : w.pendingTorque) t.setZero();
+}
+
+std::span<const BulletWorld::ContactPoint> BulletWorld::contactPoints() const { return m_impl->contactPoints; }
 
 // After each solve: its contact impulses added per pair of bodies (a step of n substeps solves
 // n times; what it reports is their sum).
 void BulletWorld::addContactImpulses() {
-  btDispatcher* dispatcher = m_impl->world.getDispatcher();
-  for (int m = 0; m < dispatcher->getNumManifolds(); ++m) {
-    const btPersistentManifold* manifold = dispatcher->getManifoldByIndexInternal(m);
+  for (const btPersistentManifold* manifold : m_impl->world.solvedManifolds()) {
     double total = 0.0;
-    for (int p = 0; p < manifold->getNumContacts(); ++p) total += manifold->getContactPoint(p).m_appliedImpulse;
-    if (total == 0.0) continue;
     const int a = manifold->getBody0()->getUserIndex(), b = manifold->getBody1()->getUserIndex();
+    for (int p = 0; p < manifold->getNumContacts(); ++p) {
+      const btManifoldPoint& point = manifold->getContactPoint(p);
+      total += point.m_appliedImpulse;
+      const Vec3 friction = point.m_appliedImpulseLateral1 * fromBt(point.m_lateralFrictionDir1) +
+                            point.m_appliedImpulseLateral2 * fromBt(point.m_lateralFrictionDir2);
+      m_impl->contactPoints.push_back({a, b, fromBt(point.getPositionWorldOnA()), fromBt(point.getPositionWorldOnB()),
+                                       fromBt(point.m_normalWorldOnB), point.getDistance(), point.m_appliedImpulse,
+                                       friction});
+    }
+    if (total == 0.0) continue;
     const int low = std::min(a, b), high = std::max(a, b);
     auto& pairs = m_impl->pairImpulses;
     auto pair = std::find_if(pairs.begin(), pairs.end(), [&](const Impl::PairImpulse& q) {

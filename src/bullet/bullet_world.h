@@ -37,11 +37,54 @@ class BulletWorld {
 
   void setGravity(const Vec3& gravity);
 
-  // The descriptor is validated by the caller. Returns the body's index.
-  int addRigidBody(const RigidBodyDesc& desc);
-  int addHinge(const HingeDesc& desc);
-  int addFixedJoint(const FixedJointDesc& desc);
-  int rigidBodyCount() const;
+  // The descriptor is validated by the caller. Each goes into slot `slot` (a removed one, or the
+  // next new one: rigidBodyCount() or jointSlotCount()) and returns it.
+  int addRigidBody(const RigidBodyDesc& desc, int slot);
+  int addHinge(const HingeDesc& desc, int slot);
+  int addFixedJoint(const FixedJointDesc& desc, int slot);
+  int rigidBodyCount() const;  // slots, removed bodies included: every array is indexed by slot
+  int jointSlotCount() const;
+
+  // Removal (bullet_edit.cpp). A removed body leaves the dynamics world (its contacts go with
+  // it) and stays in its slot as an immovable ghost until the slot is reused. Its joints must
+  // have been removed first.
+  void removeRigidBody(int body);
+  void removeJoint(int joint);
+  bool isRemoved(int body) const;
+  // The joints (slots) that hold a body.
+  std::vector<int> jointsOf(int body) const;
+
+  // Pushing and moving (bullet_edit.cpp); the caller checks that the body is dynamic.
+  void addForce(int body, const Vec3& force, const Vec3& torque);  // for the next step
+  void applyImpulse(int body, const Vec3& impulse, const Vec3& offsetFromCentre);
+  void applyAngularImpulse(int body, const Vec3& angularImpulse);
+  void setLinearVelocity(int body, const Vec3& velocity);
+  void setAngularVelocity(int body, const Vec3& velocity);
+  void setPose(int body, const Vec3& position, const Quat& orientation);
+  void setCollisionFilter(int body, uint32_t group, uint32_t mask);
+
+  // Hinges (bullet_edit.cpp): the angle and speed of body A relative to B about the axis.
+  bool isHinge(int joint) const;
+  void setHingeLimits(int joint, double lower, double upper);
+  void setHingeMotor(int joint, bool enabled, double targetSpeed, double maxTorque);
+  double hingeAngle(int joint) const;
+  double hingeSpeed(int joint) const;
+
+  // One contact point of the step's solves (RigidContact, by body slot).
+  struct ContactPoint {
+    int bodyA, bodyB;
+    Vec3 pointOnA, pointOnB, normal;
+    double distance, normalImpulse;
+    Vec3 frictionImpulse;
+  };
+  std::span<const ContactPoint> contactPoints() const;
+
+  // Everything of Bullet's that the next step reads (bullet_snapshot.cpp).
+  struct State;
+  std::unique_ptr<State> saveState() const;
+  // Returns how many saved manifolds found no pair of the broadphase's to go into (their points
+  // are lost; 0 unless bodies moved apart between the contact pass and the save).
+  int restoreState(const State& state);
 
   // Stages of a step, in order.
   void predictRigidMotion(double timeStep);
@@ -71,7 +114,9 @@ class BulletWorld {
   void setCanSleep(int body, bool canSleep);
   void setKinematicTarget(int body, const Vec3& position, const Quat& orientation);
   double contactImpulse(int bodyA, int bodyB) const;  // N·s over the step, summed over its solves
-  void clearContactImpulses();                        // at the start of a step
+  // At the start of a step: the contact impulse sums and points cleared, and the forces applied
+  // since the last step made this step's (each substep's prediction applies them).
+  void beginStep();
   int manifoldCount() const;
   int jointCount() const;
   struct RayHit {

@@ -216,7 +216,10 @@ struct Detector {
     meets.assign(count * count, 0);
     for (size_t a = 0; a < count; ++a)
       for (size_t b = 0; b < count; ++b)
-        meets[a * count + b] = a == b ? surfaces[a].selfCollision : bounds[a].intersects(bounds[b]);
+        meets[a * count + b] = a == b ? surfaces[a].selfCollision
+                                      : bounds[a].intersects(bounds[b]) &&
+                                            collisionGroupsMeet(surfaces[a].group, surfaces[a].mask,
+                                                                surfaces[b].group, surfaces[b].mask);
   }
 
   // Whether any surface can touch the features (faces, edges) of surface s.
@@ -387,6 +390,7 @@ void detectContacts(std::span<const CollisionSurface> surfaces, const NodeArrays
   Detector detector{surfaces, nodes, rigid, anchored, timeStep, contacts, {}, {}, 0.0};
   for (const CollisionSurface& surface : surfaces)
     for (int32_t body = 0; body < static_cast<int32_t>(rigid.size()); ++body) {
+      if (!collisionGroupsMeet(surface.group, surface.mask, rigid[body].group, rigid[body].mask)) continue;
       detector.nodesAgainstRigid(surface, body);
       detector.facesAgainstRigid(surface, body);
     }

@@ -38,6 +38,8 @@ struct CollisionSurface {
   double thickness = 0.0;
   double friction = 0.0;
   bool selfCollision = false;
+  uint32_t group = kDefaultCollisionGroup;  // filter (world.h: collisionGroupsMeet)
+  uint32_t mask = kAllCollisionGroups;
 };
 
 struct CollisionRigid {
@@ -48,6 +50,8 @@ struct CollisionRigid {
   Vec3 angularVelocity = Vec3::Zero();
   double friction = 0.0;
   double mass = 0.0;  // 0 when immovable
+  uint32_t group = kDefaultCollisionGroup;  // filter (world.h: collisionGroupsMeet)
+  uint32_t mask = kAllCollisionGroups;
 };
 
 // A node anchored to a rigid body does not collide with it (nor do faces around the node).

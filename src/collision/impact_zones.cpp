@@ -57,7 +57,10 @@ struct Separator {
     meets.assign(count * count, 0);
     for (size_t a = 0; a < count; ++a)
       for (size_t b = 0; b < count; ++b)
-        meets[a * count + b] = a == b ? surfaces[a].selfCollision : bounds[a].intersects(bounds[b]);
+        meets[a * count + b] = a == b ? surfaces[a].selfCollision
+                                      : bounds[a].intersects(bounds[b]) &&
+                                            collisionGroupsMeet(surfaces[a].group, surfaces[a].mask,
+                                                                surfaces[b].group, surfaces[b].mask);
   }
 
   bool involved(size_t s) const {

@@ -113,6 +113,16 @@ class ObjectReader {
                                std::to_string(value));
     return value;
   }
+  // A 32-bit mask: an integer in [0, 2³² − 1].
+  uint32_t bits(const std::string& key, uint32_t fallback) {
+    if (!has(key)) return fallback;
+    const Json& value = m_value.at(key);
+    const bool fits = value.is_number_unsigned() ? value.get<uint64_t>() <= 0xFFFFFFFFull
+                                                 : value.is_number_integer() && value.get<int64_t>() >= 0 &&
+                                                       value.get<int64_t>() <= 0xFFFFFFFFll;
+    if (!fits) fail(fieldPath(key), "must be an integer in [0, 4294967295] (a 32-bit mask), got " + value.dump());
+    return static_cast<uint32_t>(value.get<uint64_t>());
+  }
   bool boolean(const std::string& key, bool fallback) {
     if (!has(key)) return fallback;
     const Json& value = m_value.at(key);

@@ -145,8 +145,14 @@ void build(const Scene& scene, World& world) {
     const SceneJoint& joint = scene.joints[i];
     std::optional<RigidBodyId> bodyB;
     if (joint.bodyB) bodyB = rigid.at(*joint.bodyB);
+    HingeDesc hinge{rigid.at(joint.bodyA), bodyB, joint.pivot, joint.axis};
+    hinge.lowerLimit = joint.lowerLimit;
+    hinge.upperLimit = joint.upperLimit;
+    hinge.motor = joint.motor;
+    hinge.motorTargetSpeed = joint.motorTargetSpeed;
+    hinge.motorMaxTorque = joint.motorMaxTorque;
     const Status status = joint.kind == SceneJoint::Kind::Hinge
-                              ? world.addHinge({rigid.at(joint.bodyA), bodyB, joint.pivot, joint.axis}).status()
+                              ? world.addHinge(hinge).status()
                               : world.addFixedJoint({rigid.at(joint.bodyA), bodyB}).status();
     check(status, "/joints/" + std::to_string(i));
   }

@@ -129,6 +129,8 @@ SceneRigidBody readRigidBody(const Json& value, const std::string& path) {
   d.friction = body.nonNegative("friction", d.friction);
   d.restitution = body.numberIn("restitution", d.restitution, 0.0, 1.0);
   d.canSleep = body.boolean("can_sleep", d.canSleep);
+  d.collisionGroup = body.bits("collision_group", d.collisionGroup);
+  d.collisionMask = body.bits("collision_mask", d.collisionMask);
   body.finish();
   return out;
 }
@@ -144,6 +146,27 @@ SceneJoint readJoint(const Json& value, const std::string& path) {
     out.pivot = joint.vec3("pivot");
     out.axis = joint.vec3("axis");
     if (out.axis.norm() < 1e-9) fail(joint.fieldPath("axis"), "must not be zero");
+    if (joint.has("limits")) {
+      const Json& limits = joint.required("limits");
+      const std::string where = joint.fieldPath("limits");
+      if (!limits.is_array() || limits.size() != 2) fail(where, "must be [lower, upper] in rad");
+      out.lowerLimit = scene::readNumber(limits[0], where + "/0");
+      out.upperLimit = scene::readNumber(limits[1], where + "/1");
+      if (!(out.lowerLimit <= out.upperLimit) || out.lowerLimit < -M_PI || out.upperLimit > M_PI)
+        fail(where, "must be [lower, upper] with -pi <= lower <= upper <= pi rad, got [" + scene::formatValue(out.lowerLimit) +
+                        ", " + scene::formatValue(out.upperLimit) + "]");
+    }
+    if (joint.has("motor")) {
+      ObjectReader motor(joint.required("motor"), joint.fieldPath("motor"));
+      out.motor = true;
+      out.motorTargetSpeed = motor.number("target_speed");
+      motor.required("max_torque");
+      out.motorMaxTorque = motor.nonNegative("max_torque", 0.0);
+      motor.finish();
+    }
+  } else {
+    for (const char* key : {"limits", "motor"})
+      if (joint.has(key)) fail(joint.fieldPath(key), "only a hinge has limits and a motor");
   }
   joint.finish();
   return out;
@@ -295,6 +318,8 @@ SceneDeformable readDeformable(const Json& value, const std::string& path) {
   d.collision.selfCollision = deformable.boolean("self_collision", d.collision.selfCollision);
   d.collision.thickness = deformable.nonNegative("thickness", d.collision.thickness);
   d.collision.friction = deformable.nonNegative("friction", d.collision.friction);
+  d.collision.group = deformable.bits("collision_group", d.collision.group);
+  d.collision.mask = deformable.bits("collision_mask", d.collision.mask);
   d.damping = deformable.nonNegative("damping", d.damping);
   d.rowSolver = deformable.choice("row_solver", scene::kRowSolverNames, d.rowSolver);
   out.initialVelocity = deformable.vec3("initial_velocity", Vec3::Zero());

@@ -65,7 +65,9 @@ Json rigidJson(const SceneRigidBody& body) {
            {"angular_velocity", vec(d.angularVelocity)},
            {"friction", d.friction},
            {"restitution", d.restitution},
-           {"can_sleep", d.canSleep}};
+           {"can_sleep", d.canSleep},
+           {"collision_group", d.collisionGroup},
+           {"collision_mask", d.collisionMask}};
   return out;
 }
 
@@ -75,6 +77,8 @@ Json jointJson(const SceneJoint& joint) {
   if (joint.kind == SceneJoint::Kind::Hinge) {
     out["pivot"] = vec(joint.pivot);
     out["axis"] = vec(joint.axis);
+    if (joint.lowerLimit <= joint.upperLimit) out["limits"] = {joint.lowerLimit, joint.upperLimit};
+    if (joint.motor) out["motor"] = {{"target_speed", joint.motorTargetSpeed}, {"max_torque", joint.motorMaxTorque}};
   }
   return out;
 }
@@ -166,6 +170,8 @@ Json deformableJson(const SceneDeformable& deformable) {
   out["self_collision"] = d.collision.selfCollision;
   out["thickness"] = d.collision.thickness;
   out["friction"] = d.collision.friction;
+  out["collision_group"] = d.collision.group;
+  out["collision_mask"] = d.collision.mask;
   out["damping"] = d.damping;
   out["row_solver"] = scene::nameOf(scene::kRowSolverNames, d.rowSolver);
   out["initial_velocity"] = vec(deformable.initialVelocity);
