@@ -21,10 +21,16 @@ if [[ -n "$outside" ]]; then
   echo "$outside" | head -20
   status=1
 fi
+private=$(grep -E '::(Impl|detail)\b' <<<"$exported" || true)
+if [[ -n "$private" ]]; then
+  echo "shared_library_exports: exports private parts:"
+  echo "$private"
+  status=1
+fi
 # The name each exported function or class is known by (tandem::World::step(double) -> World, step).
-names=$(grep -E '^tandem::' <<<"$exported" | sed -E 's/\(.*//; s/<.*//' | tr ':' '\n' | grep -v -E '^$|^tandem$|^operator|^~' | sort -u)
+names=$(grep -E '^tandem::' <<<"$exported" | sed -E 's/\[abi:[a-z0-9]+\]//g; s/\(.*//; s/<.*//' | tr ':' '\n' | grep -v -E '^$|^tandem$|^operator|^~' | sort -u)
 for name in $names; do
-  grep -q -w -r -- "$name" "$headers" || { echo "shared_library_exports: exports $name, which no public header declares"; status=1; }
+  grep -q -w -r -F -- "$name" "$headers" || { echo "shared_library_exports: exports $name, which no public header declares"; status=1; }
 done
 ((status == 0)) && echo "shared_library_exports: $count symbols, all tandem's public API"
 exit $status
