@@ -57,10 +57,22 @@ int nodeCount(const World& world) {
   return nodes;
 }
 
+std::filesystem::path sceneDirectory() {
+#ifdef TANDEM_INSTALLED_SCENE_DIR
+  std::error_code error;
+  const std::filesystem::path command = std::filesystem::read_symlink("/proc/self/exe", error);
+  if (!error) {
+    const std::filesystem::path installed = (command.parent_path() / TANDEM_INSTALLED_SCENE_DIR).lexically_normal();
+    if (std::filesystem::is_directory(installed, error)) return installed;
+  }
+#endif
+  return TANDEM_SCENE_DIR;
+}
+
 std::vector<std::filesystem::path> shippedSceneFiles() {
   std::vector<std::filesystem::path> files;
   std::error_code error;
-  for (const auto& entry : std::filesystem::directory_iterator(TANDEM_SCENE_DIR, error))
+  for (const auto& entry : std::filesystem::directory_iterator(sceneDirectory(), error))
     if (entry.path().extension() == ".json") files.push_back(entry.path());
   std::sort(files.begin(), files.end());
   return files;

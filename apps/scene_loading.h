@@ -28,7 +28,10 @@ bool overrideSolver(World& world, int iterations, int substeps = 0);
 
 int nodeCount(const World& world);
 
-// The scene files shipped in the source tree's scenes/, sorted by name.
+// Where the shipped scene files are: beside an installed `tandem` (PREFIX/share/tandem/scenes),
+// else the source tree's scenes/.
+std::filesystem::path sceneDirectory();
+// The scene files there, sorted by name.
 std::vector<std::filesystem::path> shippedSceneFiles();
 
 }  // namespace tandem::cli

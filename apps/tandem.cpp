@@ -3,6 +3,7 @@
 #include <tandem/record.h>
 #include <tandem/scene_file.h>
 #include <tandem/scenes.h>
+#include <tandem/version.h>
 #include <tandem/world.h>
 
 #include "scene_loading.h"
@@ -199,7 +200,7 @@ void list() {
     std::printf("  %-18s %s\n", std::string(scene.name).c_str(), std::string(scene.description).c_str());
   const std::vector<std::filesystem::path> files = tandem::cli::shippedSceneFiles();
   if (files.empty()) return;
-  std::printf("Scene files in %s (tandem run FILE):\n", TANDEM_SCENE_DIR);
+  std::printf("Scene files in %s (tandem run FILE):\n", tandem::cli::sceneDirectory().c_str());
   for (const auto& file : files) {
     tandem::Result<tandem::Scene> scene = tandem::loadScene(file.string());
     std::printf("  %-24s %s\n", file.filename().string().c_str(),
@@ -223,6 +224,7 @@ const CLI::Validator kFinitePositive(
 int main(int argc, char** argv) {
   CLI::App app{"Tandem: two-way coupled rigid and deformable bodies"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("tandem ") + tandem::version());
 
   RunOptions options;
   CLI::App* runCommand = app.add_subcommand("run", "Run a scene headless and print what it simulated and how fast");

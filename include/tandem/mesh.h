@@ -5,6 +5,7 @@
 // made from it (World::addDeformable) or by validateMesh().
 #pragma once
 
+#include <tandem/export.h>
 #include <tandem/types.h>
 
 #include <array>
@@ -30,30 +31,30 @@ struct DeformableMesh {
 
 // Checks sizes, finiteness, masses (> 0 and finite), index ranges,
 // zero-length edges and degenerate triangles and tetrahedra.
-Status validateMesh(const DeformableMesh& mesh);
+TANDEM_API Status validateMesh(const DeformableMesh& mesh);
 
 // A straight rope of `nodeCount` nodes from `start` to `end`, `totalMass` spread evenly.
-Result<DeformableMesh> makeRope(const Vec3& start, const Vec3& end, int nodeCount, double totalMass);
+TANDEM_API Result<DeformableMesh> makeRope(const Vec3& start, const Vec3& end, int nodeCount, double totalMass);
 
 // A rope of `nodeCount` nodes laid along the polyline through `path` (two or more points), spaced
 // evenly by arc length, `totalMass` spread evenly: a rope over a wheel or round a post.
-Result<DeformableMesh> makeRopeAlongPath(const std::vector<Vec3>& path, int nodeCount, double totalMass);
+TANDEM_API Result<DeformableMesh> makeRopeAlongPath(const std::vector<Vec3>& path, int nodeCount, double totalMass);
 
 // A rectangular cloth of `columns` x `rows` nodes spanning `corner` to `corner + sideU + sideV`,
 // with structural edges along both grid directions, alternating-diagonal triangles, and the
 // diagonals as shear edges. Node (column c, row r) has index r * columns + c.
-Result<DeformableMesh> makeClothGrid(const Vec3& corner, const Vec3& sideU, const Vec3& sideV,
+TANDEM_API Result<DeformableMesh> makeClothGrid(const Vec3& corner, const Vec3& sideU, const Vec3& sideV,
                                      int columns, int rows, double totalMass);
 
 // An axis-aligned box from `minCorner` to `maxCorner` split into cellsX*cellsY*cellsZ cubes of
 // five tetrahedra each, with every tet edge and the boundary triangles.
-Result<DeformableMesh> makeTetBox(const Vec3& minCorner, const Vec3& maxCorner, int cellsX, int cellsY,
+TANDEM_API Result<DeformableMesh> makeTetBox(const Vec3& minCorner, const Vec3& maxCorner, int cellsX, int cellsY,
                                   int cellsZ, double totalMass);
 
 // A tetrahedral cylinder along +y from `baseCentre`: `rings` cells across the radius,
 // `sectors` around, `layers` along the axis; a central prism of each layer is split like the
 // outer ones, so every tet is well shaped. Boundary triangles and tet edges included.
-Result<DeformableMesh> makeTetCylinder(const Vec3& baseCentre, double radius, double height, int rings, int sectors,
+TANDEM_API Result<DeformableMesh> makeTetCylinder(const Vec3& baseCentre, double radius, double height, int rings, int sectors,
                                        int layers, double totalMass);
 
 // A TetGen mesh: `<base>.node` and `<base>.ele`, and `<base>.face` for the boundary when it
@@ -61,16 +62,16 @@ Result<DeformableMesh> makeTetCylinder(const Vec3& baseCentre, double radius, do
 // a quarter of each tet's mass to each of its nodes. Tets wound the other way round (TetGen's
 // own convention among them) are turned round; degenerate tets, and any problem in the files,
 // are errors naming the file and the line.
-Result<DeformableMesh> loadTetGen(const std::string& basePath, double density);
+TANDEM_API Result<DeformableMesh> loadTetGen(const std::string& basePath, double density);
 
 // A surface mesh from a Wavefront OBJ file (polygons are triangulated); its edges are the
 // triangles' edges, `totalMass` lumped by area.
-Result<DeformableMesh> loadObj(const std::string& path, double totalMass);
+TANDEM_API Result<DeformableMesh> loadObj(const std::string& path, double totalMass);
 
 // For bending: each interior edge (i, j) shared by triangles (i, j, left) and (j, i, right).
 struct EdgeHinge {
   int32_t i, j, left, right;
 };
-std::vector<EdgeHinge> findEdgeHinges(const std::vector<std::array<int32_t, 3>>& triangles);
+TANDEM_API std::vector<EdgeHinge> findEdgeHinges(const std::vector<std::array<int32_t, 3>>& triangles);
 
 }  // namespace tandem

@@ -11,6 +11,7 @@
 // only). Fields that do not apply are empty. Numbers are written to the last bit (%.17g).
 #pragma once
 
+#include <tandem/export.h>
 #include <tandem/world.h>
 
 #include <cstdio>
@@ -19,7 +20,7 @@
 
 namespace tandem {
 
-class StepRecorder {
+class TANDEM_API StepRecorder {
  public:
   // Opens (truncates) `path` and writes the header.
   static Result<StepRecorder> open(const std::string& path, bool nodes);

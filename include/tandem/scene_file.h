@@ -6,6 +6,7 @@
 // scene file.
 #pragma once
 
+#include <tandem/export.h>
 #include <tandem/world.h>
 
 #include <array>
@@ -106,16 +107,16 @@ struct Scene {
 };
 
 // Reads and checks a scene file. A problem gives "FILE: /json/path: what is wrong".
-Result<Scene> loadScene(const std::string& path);
+TANDEM_API Result<Scene> loadScene(const std::string& path);
 // The same from text; `fileName` names it in messages, `directory` is where meshes are found.
-Result<Scene> parseScene(std::string_view json, const std::string& fileName, const std::string& directory);
+TANDEM_API Result<Scene> parseScene(std::string_view json, const std::string& fileName, const std::string& directory);
 
 // The scene as a scene file (every field written, numbers to the last bit).
-std::string sceneToJson(const Scene& scene);
+TANDEM_API std::string sceneToJson(const Scene& scene);
 
 // Adds everything in the scene to `world` (which should be empty) and applies its settings.
 // Problems found only now (a mesh file that does not load, a node index out of range, a body
 // the world refuses) are named like parse errors.
-Status buildScene(const Scene& scene, World& world);
+TANDEM_API Status buildScene(const Scene& scene, World& world);
 
 }  // namespace tandem

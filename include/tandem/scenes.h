@@ -2,6 +2,7 @@
 // and benchmarks measure.
 #pragma once
 
+#include <tandem/export.h>
 #include <tandem/world.h>
 
 #include <span>
@@ -17,7 +18,7 @@ struct BuiltinScene {
   Status (*build)(World& world);
 };
 
-std::span<const BuiltinScene> builtinScenes();
-const BuiltinScene* findBuiltinScene(std::string_view name);
+TANDEM_API std::span<const BuiltinScene> builtinScenes();
+TANDEM_API const BuiltinScene* findBuiltinScene(std::string_view name);
 
 }  // namespace tandem

@@ -2,6 +2,7 @@
 // shape's outside as triangles). Planes are infinite and have no surface here.
 #pragma once
 
+#include <tandem/export.h>
 #include <tandem/world.h>
 
 #include <array>
@@ -19,6 +20,6 @@ struct ShapeSurface {
 };
 
 // `segments`: around a sphere, cylinder or capsule (at least 3).
-ShapeSurface shapeSurface(const RigidShape& shape, int segments = 32);
+TANDEM_API ShapeSurface shapeSurface(const RigidShape& shape, int segments = 32);
 
 }  // namespace tandem

@@ -4,6 +4,7 @@
 // Everything a user adds is referred to by a small typed index; nothing hands out pointers.
 #pragma once
 
+#include <tandem/export.h>
 #include <tandem/mesh.h>
 
 #include <array>
@@ -110,7 +111,7 @@ struct WorldSettings {
 
 enum class ShapeType { Box, Sphere, Cylinder, Capsule, Plane, ConvexHull, TriangleMesh };
 
-struct RigidShape {
+struct TANDEM_API RigidShape {
   ShapeType type = ShapeType::Box;
   Vec3 halfExtents{0.5, 0.5, 0.5};  // box
   double radius = 0.5;              // sphere, cylinder, capsule
@@ -288,7 +289,7 @@ struct ContactReport {
 
 // A point fixed in a rigid body that a point of a deformable is held to: a node, or a point
 // with barycentric weights on up to four nodes (an edge, a face or a tetrahedron).
-struct AnchorDesc {
+struct TANDEM_API AnchorDesc {
   DeformableId deformable;
   std::array<int32_t, 4> nodes{-1, -1, -1, -1};
   std::array<double, 4> weights{1.0, 0.0, 0.0, 0.0};  // must sum to 1
@@ -338,7 +339,7 @@ struct RayHit {
 };
 
 // A copy of a world's whole state (World::snapshot): see World::restore.
-class WorldSnapshot {
+class TANDEM_API WorldSnapshot {
  public:
   WorldSnapshot();
   ~WorldSnapshot();
@@ -358,7 +359,7 @@ class WorldSnapshot {
   std::unique_ptr<Data> m_data;
 };
 
-class World {
+class TANDEM_API World {
  public:
   World();  // default settings; change them with setSettings
   ~World();
