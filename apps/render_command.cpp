@@ -2,6 +2,8 @@
 // renderer, written as PNG files or an mp4.
 #include "render_command.h"
 
+#include "exit_codes.h"
+
 #include "scene_loading.h"
 #include "viewer.h"
 
@@ -65,17 +67,18 @@ int render(const RenderCommandOptions& options) {
     std::filesystem::create_directories(out, error);
     if (error) {
       std::fprintf(stderr, "tandem: cannot make the folder %s: %s\n", options.out.c_str(), error.message().c_str());
-      return 2;
+      return kExitOutputFailed;
     }
   }
 
   World world;
   const std::optional<SceneInfo> scene = buildInto(world, options.scene);
-  if (!scene || !overrideSolver(world, options.iterations)) return 1;
+  if (!scene) return kExitBadInput;
+  if (!overrideSolver(world, options.iterations)) return kExitUsage;
   const double h = scene->timeStep;
   if (Status s = advanceTo(world, options.start, h); !s) {
     std::fprintf(stderr, "tandem: %s\n", s.message().c_str());
-    return 1;
+    return kExitDiverged;
   }
   render::Camera camera;
   if (options.camera.empty()) {
@@ -99,7 +102,7 @@ int render(const RenderCommandOptions& options) {
         render::VideoWriter::open(options.out, options.width, options.height, options.fps);
     if (!opened) {
       std::fprintf(stderr, "tandem: %s\n", opened.message().c_str());
-      return 1;
+      return kExitOutputFailed;
     }
     video = std::move(opened).value();
   }
@@ -112,7 +115,7 @@ int render(const RenderCommandOptions& options) {
   for (int frame = 0; frame < options.frames; ++frame) {
     if (Status s = advanceTo(world, options.start + frame / options.fps, h); !s) {
       std::fprintf(stderr, "\ntandem: %s\n", s.message().c_str());
-      return 1;
+      return kExitDiverged;
     }
     (*target)->bind();
     (*renderer)->draw(world, camera, options.width, options.height, drawing);
@@ -127,7 +130,7 @@ int render(const RenderCommandOptions& options) {
     }
     if (!written) {
       std::fprintf(stderr, "\ntandem: %s\n", written.message().c_str());
-      return 1;
+      return kExitOutputFailed;
     }
     if (progress) {
       std::fprintf(stderr, "\r  [%-40s] %d/%d frames", std::string(40 * (frame + 1) / options.frames, '#').c_str(),
@@ -139,7 +142,7 @@ int render(const RenderCommandOptions& options) {
   if (video)
     if (Status s = video->close(); !s) {
       std::fprintf(stderr, "tandem: %s\n", s.message().c_str());
-      return 1;
+      return kExitOutputFailed;
     }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
   std::printf("Rendered %d frame%s of '%s' (t = %.2f to %.2f s) at %dx%d to %s in %.2f s\n", options.frames,

@@ -6,6 +6,7 @@
 #include <tandem/version.h>
 #include <tandem/world.h>
 
+#include "exit_codes.h"
 #include "scene_loading.h"
 #ifdef TANDEM_HAS_RENDER
 #include "render_command.h"
@@ -28,6 +29,7 @@ namespace {
 
 using tandem::BuiltinScene;
 using tandem::StepReport;
+using namespace tandem::cli;  // exit codes
 using tandem::cli::buildInto;
 using tandem::cli::nodeCount;
 using tandem::cli::overrideSolver;
@@ -77,15 +79,15 @@ void printReport(const StepReport& report, const std::vector<double>& stageTotal
 int run(const RunOptions& options) {
   tandem::World world;
   const std::optional<SceneInfo> scene = buildInto(world, options.scene);
-  if (!scene) return 1;
-  if (!overrideSolver(world, options.iterations, options.substeps)) return 2;
+  if (!scene) return kExitBadInput;
+  if (!overrideSolver(world, options.iterations, options.substeps)) return kExitUsage;
   const double h = options.timeStep > 0 ? options.timeStep : scene->timeStep;
   const double seconds = options.seconds > 0 ? options.seconds : scene->duration;
   const double wanted = std::round(seconds / h);
   if (options.steps == 0 && wanted > static_cast<double>(kMaxSteps)) {
     std::fprintf(stderr, "tandem: %g s at h = %g s is %.3g steps; a run takes at most %ld (use a larger --dt or fewer --seconds)\n",
                  seconds, h, wanted, kMaxSteps);
-    return 2;
+    return kExitUsage;
   }
   const long steps = options.steps > 0 ? options.steps : std::max(1L, static_cast<long>(wanted));
   std::optional<tandem::StepRecorder> recorder;
@@ -94,7 +96,7 @@ int run(const RunOptions& options) {
     tandem::Status written = opened ? opened->write(world) : opened.status();
     if (!written) {
       std::fprintf(stderr, "tandem: %s\n", written.message().c_str());
-      return 2;
+      return kExitOutputFailed;
     }
     recorder.emplace(std::move(opened).value());
   }
@@ -119,12 +121,12 @@ int run(const RunOptions& options) {
     const auto before = std::chrono::steady_clock::now();
     if (tandem::Status s = world.step(h); !s) {
       std::fprintf(stderr, "\ntandem: %s\n", s.message().c_str());
-      return 1;
+      return kExitDiverged;
     }
     if (recorder) {
       if (tandem::Status s = recorder->write(world); !s) {
         std::fprintf(stderr, "\ntandem: %s\n", s.message().c_str());
-        return 1;
+        return kExitOutputFailed;
       }
     }
     stepMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - before).count());
@@ -147,7 +149,7 @@ int run(const RunOptions& options) {
   if (recorder) {
     if (tandem::Status s = recorder->close(); !s) {
       std::fprintf(stderr, "tandem: %s\n", s.message().c_str());
-      return 1;
+      return kExitOutputFailed;
     }
   }
 
@@ -172,7 +174,7 @@ int run(const RunOptions& options) {
     }
   }
   if (options.report) printReport(world.lastReport(), stageTotals, steps, maxRows);
-  return 0;
+  return violatedSteps > 0 ? kExitViolated : kExitSuccess;
 }
 
 // Loads and builds each scene file (without stepping it): every problem a run would meet.
@@ -190,7 +192,7 @@ int validate(const std::vector<std::string>& files) {
     std::printf("%s: ok (%d rigid bodies, %d deformables with %d nodes, %zu joints, %zu anchors)\n", file.c_str(),
                 world.rigidBodyCount(), world.deformableCount(), nodeCount(world), scene->joints.size(), scene->anchors.size());
   }
-  return failures ? 1 : 0;
+  return failures ? kExitBadInput : kExitSuccess;
 }
 
 // The built-in scenes, then the scene files shipped in scenes/.
@@ -257,7 +259,7 @@ int main(int argc, char** argv) {
     app.add_subcommand(name, "(not built: needs GLFW, EGL, OpenGL and Dear ImGui)")->allow_extras()->callback([] {
       std::fprintf(stderr, "tandem: this build has no rendering; install libglfw3-dev libegl-dev libgl-dev "
                            "libimgui-dev and build again (scripts/setup.sh does)\n");
-      std::exit(1);
+      std::exit(kExitOther);
     });
 #endif
 
@@ -271,10 +273,14 @@ int main(int argc, char** argv) {
     }
     if (!known) {
       std::fprintf(stderr, "tandem: unknown command '%s' (commands: %s; see tandem --help)\n", argv[1], commands.c_str());
-      return 2;
+      return kExitUsage;
     }
   }
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {  // CLI11's own codes are 100 and up; --help is 0
+    return app.exit(error) == 0 ? kExitSuccess : kExitUsage;
+  }
 #ifdef TANDEM_HAS_RENDER
   if (const int status = runRenderCommand(); status >= 0) return status;
 #endif

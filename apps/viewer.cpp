@@ -3,8 +3,11 @@
 // Mouse: left-drag on a body grabs it (a grab row pulls the picked point towards the cursor,
 // kept at the depth where it was picked); left-drag elsewhere orbits; right- or middle-drag
 // pans; the wheel zooms. Keys: space pauses, S steps, R resets, W wireframe, Escape quits.
+// SIGTERM or SIGINT (Ctrl-C) quits the same way, after the frame being drawn: a script that
+// drives the window tells the viewer when it is done instead of racing a wall-clock limit.
 #include "viewer.h"
 
+#include "exit_codes.h"
 #include "scene_loading.h"
 
 #include "render/camera.h"
@@ -22,6 +25,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <deque>
 #include <filesystem>
@@ -33,6 +37,9 @@ namespace tandem::cli {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+volatile std::sig_atomic_t quitRequested = 0;  // set by SIGTERM or SIGINT
+extern "C" void requestQuit(int) { quitRequested = 1; }
 
 // Every scene the picker offers: the built-ins, then the shipped scene files.
 std::vector<std::string> availableScenes() {
@@ -109,10 +116,10 @@ class Viewer {
       drawPanels();
       ++frame;
       const bool lastFrame =
-          (m_options.frames > 0 && frame >= m_options.frames) ||
+          quitRequested != 0 || (m_options.frames > 0 && frame >= m_options.frames) ||
           (m_options.maxSeconds > 0 && std::chrono::duration<double>(Clock::now() - start).count() > m_options.maxSeconds);
       if ((lastFrame || glfwWindowShouldClose(m_window)) && !m_options.screenshot.empty())
-        if (!screenshot(width, height)) return 1;
+        if (!screenshot(width, height)) return kExitOutputFailed;
       glfwSwapBuffers(m_window);
       if (lastFrame) break;
     }
@@ -124,7 +131,7 @@ class Viewer {
       const Vec3 p = m_world->rigidPosition(id);
       std::printf("  rigid '%s' at (%.4f, %.4f, %.4f) m\n", m_world->rigidName(id).c_str(), p.x(), p.y(), p.z());
     }
-    return m_error.empty() ? 0 : 1;
+    return m_error.empty() ? kExitSuccess : kExitDiverged;
   }
 
  private:
@@ -405,7 +412,7 @@ int view(const ViewOptions& options) {
   glfwSetErrorCallback([](int code, const char* message) { std::fprintf(stderr, "tandem: GLFW %d: %s\n", code, message); });
   if (!glfwInit()) {
     std::fprintf(stderr, "tandem: the viewer needs a display (set DISPLAY, or use `tandem render` with none)\n");
-    return 1;
+    return kExitOther;
   }
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
@@ -415,7 +422,7 @@ int view(const ViewOptions& options) {
   if (!window) {
     glfwTerminate();
     std::fprintf(stderr, "tandem: cannot open an OpenGL 3.3 window\n");
-    return 1;
+    return kExitOther;
   }
   glfwMakeContextCurrent(window);
   glfwSwapInterval(1);
@@ -426,13 +433,16 @@ int view(const ViewOptions& options) {
   ImGui::StyleColorsDark();
   ImGui_ImplGlfw_InitForOpenGL(window, true);
   ImGui_ImplOpenGL3_Init("#version 330");
-  int status = 1;
+  std::signal(SIGTERM, requestQuit);
+  std::signal(SIGINT, requestQuit);
+  int status = kExitOther;
   {
     Result<std::unique_ptr<render::Renderer>> renderer = render::Renderer::create();
     if (!renderer) {
       std::fprintf(stderr, "tandem: %s\n", renderer.message().c_str());
     } else {
       Viewer viewer(options, window, std::move(renderer).value());
+      status = kExitBadInput;
       if (viewer.load(options.scene, false)) {
         glfwSetWindowTitle(window, ("Tandem: " + options.scene).c_str());
         status = viewer.run();

@@ -14,7 +14,8 @@ struct ViewOptions {
   int width = 1280;
   int height = 720;
   std::vector<double> camera;  // eye x y z, target x y z
-  // For scripts and tests: stop after this many frames or wall seconds (0: when closed),
+  // For scripts and tests: stop after this many frames or wall seconds (0: when closed, on
+  // Escape, or on SIGTERM or SIGINT, which is how a script that drives the window should stop it),
   // then write the last frame to a PNG; print the dynamic bodies' positions on exit.
   long frames = 0;
   double maxSeconds = 0.0;

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <set>
 #include <string>
@@ -60,6 +61,20 @@ void addUniqueEdges(DeformableMesh& mesh, const std::vector<std::array<int32_t, 
 }
 
 }  // namespace
+
+Status checkMeshSize(double nodes, double triangles, double tetrahedra, const Limits& limits, const std::string& who,
+                     const std::string& shape) {
+  auto over = [&](double count, double limit, const char* what, const char* limitName) -> Status {
+    if (count <= limit) return {};
+    char numbers[96];
+    std::snprintf(numbers, sizeof numbers, "%.0f %s, more than the limit of %.0f", count, what, limit);
+    return Error{who + ": " + shape + " is " + numbers + " (" + limitName + "; the API can raise it)"};
+  };
+  const double maxNodes = static_cast<double>(std::min(limits.maxNodes, kMaxIndexableNodes));
+  if (Status s = over(nodes, maxNodes, "nodes", "Limits::maxNodes"); !s) return s;
+  if (Status s = over(triangles, static_cast<double>(limits.maxTriangles), "triangles", "Limits::maxTriangles"); !s) return s;
+  return over(tetrahedra, static_cast<double>(limits.maxTetrahedra), "tetrahedra", "Limits::maxTetrahedra");
+}
 
 void addTetEdgesAndBoundary(DeformableMesh& mesh) {
   // Edges of every tet; boundary faces are those used by exactly one tet, oriented outwards.
@@ -128,8 +143,10 @@ Status validateMesh(const DeformableMesh& mesh) {
   return {};
 }
 
-Result<DeformableMesh> makeRope(const Vec3& start, const Vec3& end, int nodeCount, double totalMass) {
+Result<DeformableMesh> makeRope(const Vec3& start, const Vec3& end, int nodeCount, double totalMass,
+                                const Limits& limits) {
   if (Status s = checkCounts(nodeCount, 2, "node count", "rope"); !s) return Error{s.message()};
+  if (Status s = checkMeshSize(nodeCount, 0, 0, limits, "rope", "the node count"); !s) return Error{s.message()};
   if (Status s = checkTotalMass(totalMass, "rope"); !s) return Error{s.message()};
   if (Status s = checkPoint(start, "start", "rope"); !s) return Error{s.message()};
   if (Status s = checkPoint(end, "end", "rope"); !s) return Error{s.message()};
@@ -142,9 +159,11 @@ Result<DeformableMesh> makeRope(const Vec3& start, const Vec3& end, int nodeCoun
   return mesh;
 }
 
-Result<DeformableMesh> makeRopeAlongPath(const std::vector<Vec3>& path, int nodeCount, double totalMass) {
+Result<DeformableMesh> makeRopeAlongPath(const std::vector<Vec3>& path, int nodeCount, double totalMass,
+                                         const Limits& limits) {
   if (path.size() < 2) return Error{"rope: a path needs at least 2 points, got " + std::to_string(path.size())};
   if (Status s = checkCounts(nodeCount, 2, "node count", "rope"); !s) return Error{s.message()};
+  if (Status s = checkMeshSize(nodeCount, 0, 0, limits, "rope", "the node count"); !s) return Error{s.message()};
   if (Status s = checkTotalMass(totalMass, "rope"); !s) return Error{s.message()};
   std::vector<double> along{0.0};  // arc length at each path point
   for (size_t i = 0; i < path.size(); ++i) {
@@ -169,9 +188,13 @@ Result<DeformableMesh> makeRopeAlongPath(const std::vector<Vec3>& path, int node
 }
 
 Result<DeformableMesh> makeClothGrid(const Vec3& corner, const Vec3& sideU, const Vec3& sideV, int columns, int rows,
-                                     double totalMass) {
+                                     double totalMass, const Limits& limits) {
   if (Status s = checkCounts(columns, 2, "columns", "cloth grid"); !s) return Error{s.message()};
   if (Status s = checkCounts(rows, 2, "rows", "cloth grid"); !s) return Error{s.message()};
+  if (Status s = checkMeshSize(double(columns) * rows, 2.0 * (columns - 1.0) * (rows - 1.0), 0, limits, "cloth grid",
+                               std::to_string(columns) + " x " + std::to_string(rows) + " nodes");
+      !s)
+    return Error{s.message()};
   if (Status s = checkTotalMass(totalMass, "cloth grid"); !s) return Error{s.message()};
   if (!corner.allFinite() || !sideU.allFinite() || !sideV.allFinite())
     return Error{"cloth grid: corner and sides must be finite"};
@@ -207,10 +230,18 @@ Result<DeformableMesh> makeClothGrid(const Vec3& corner, const Vec3& sideU, cons
 }
 
 Result<DeformableMesh> makeTetBox(const Vec3& minCorner, const Vec3& maxCorner, int cellsX, int cellsY, int cellsZ,
-                                  double totalMass) {
+                                  double totalMass, const Limits& limits) {
   if (Status s = checkCounts(cellsX, 1, "cells along x", "tet box"); !s) return Error{s.message()};
   if (Status s = checkCounts(cellsY, 1, "cells along y", "tet box"); !s) return Error{s.message()};
   if (Status s = checkCounts(cellsZ, 1, "cells along z", "tet box"); !s) return Error{s.message()};
+  const double cells = double(cellsX) * cellsY * cellsZ;
+  const double boundaryCells = 2.0 * (double(cellsX) * cellsY + double(cellsY) * cellsZ + double(cellsZ) * cellsX);
+  if (Status s = checkMeshSize((cellsX + 1.0) * (cellsY + 1.0) * (cellsZ + 1.0), 2 * boundaryCells, 5 * cells, limits,
+                               "tet box",
+                               std::to_string(cellsX) + " x " + std::to_string(cellsY) + " x " + std::to_string(cellsZ) +
+                                   " cells");
+      !s)
+    return Error{s.message()};
   if (Status s = checkTotalMass(totalMass, "tet box"); !s) return Error{s.message()};
   if (!minCorner.allFinite() || !maxCorner.allFinite()) return Error{"tet box: corners must be finite"};
   if ((maxCorner - minCorner).minCoeff() <= 0)
@@ -254,10 +285,18 @@ Result<DeformableMesh> makeTetBox(const Vec3& minCorner, const Vec3& maxCorner, 
 }
 
 Result<DeformableMesh> makeTetCylinder(const Vec3& baseCentre, double radius, double height, int rings, int sectors,
-                                       int layers, double totalMass) {
+                                       int layers, double totalMass, const Limits& limits) {
   if (Status s = checkCounts(rings, 1, "rings", "tet cylinder"); !s) return Error{s.message()};
   if (Status s = checkCounts(sectors, 3, "sectors", "tet cylinder"); !s) return Error{s.message()};
   if (Status s = checkCounts(layers, 1, "layers", "tet cylinder"); !s) return Error{s.message()};
+  // Per layer: 3 tets per sector in the core, 6 per outer cell; boundary: both caps and the side.
+  const double ringCells = double(rings) * sectors;
+  if (Status s = checkMeshSize((layers + 1.0) * (1.0 + ringCells), 2.0 * (2.0 * ringCells - sectors) + 2.0 * sectors * layers,
+                               double(layers) * sectors * (3.0 + 6.0 * (rings - 1.0)), limits, "tet cylinder",
+                               std::to_string(rings) + " rings x " + std::to_string(sectors) + " sectors x " +
+                                   std::to_string(layers) + " layers");
+      !s)
+    return Error{s.message()};
   if (Status s = checkTotalMass(totalMass, "tet cylinder"); !s) return Error{s.message()};
   if (Status s = checkPoint(baseCentre, "base centre", "tet cylinder"); !s) return Error{s.message()};
   if (!(std::isfinite(radius) && radius > 0 && std::isfinite(height) && height > 0))

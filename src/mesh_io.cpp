@@ -2,6 +2,7 @@
 #include <tandem/mesh.h>
 
 #include "format.h"
+#include "input_file.h"
 #include "mesh_internal.h"
 
 #include <tiny_obj_loader.h>
@@ -27,9 +28,10 @@ struct TetGenFile {
   }
 };
 
-Result<TetGenFile> readTetGenFile(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) return Error{path + ": cannot open the file"};
+Result<TetGenFile> readTetGenFile(const std::string& path, const Limits& limits) {
+  Result<std::string> text_ = readInputFile(path, limits.maxMeshFileBytes, "TetGen file", "Limits::maxMeshFileBytes");
+  if (!text_) return Error{text_.message()};
+  std::istringstream in(std::move(text_).value());
   TetGenFile file{path, {}, 0};
   std::string text;
   for (int number = 1; std::getline(in, text); ++number) {
@@ -68,7 +70,11 @@ Result<std::vector<std::pair<int, std::vector<double>>>> readEntries(TetGenFile&
     if (values.size() < minimumWidth)
       return file.error(line, "expected " + std::to_string(minimumWidth) + " numbers, found " +
                                   std::to_string(values.size()));
-    if (i == 0 && base < 0) base = static_cast<int>(values[0]);
+    if (i == 0 && base < 0) {
+      if (values[0] != 0 && values[0] != 1)
+        return file.error(line, "the first index must be 0 or 1, got " + formatNumber(values[0]));
+      base = static_cast<int>(values[0]);
+    }
     if (values[0] != static_cast<double>(base) + static_cast<double>(i))
       return file.error(line, "index " + formatNumber(values[0]) + " out of sequence (expected " +
                                   std::to_string(base + static_cast<int>(i)) + ")");
@@ -85,16 +91,28 @@ Result<int32_t> nodeIndex(const TetGenFile& file, int line, double value, int ba
   return static_cast<int32_t>(index);
 }
 
+// Refuses an entry count past its limit before the entries are read into a mesh.
+Status checkEntryCount(const TetGenFile& file, double count, double limit, const char* what, const char* limitName) {
+  if (count <= limit) return {};
+  return file.error(file.lines[0].first, "the file declares " + formatNumber(count) + " " + what +
+                                             ", more than the limit of " + formatNumber(limit) + " (" + limitName +
+                                             "; the API can raise it)");
+}
+
 }  // namespace
 
-Result<DeformableMesh> loadTetGen(const std::string& basePath, double density) {
+Result<DeformableMesh> loadTetGen(const std::string& basePath, double density, const Limits& limits) {
   if (!(std::isfinite(density) && density > 0))
     return Error{basePath + ": density must be a positive number of kg/m³, got " + formatNumber(density)};
   DeformableMesh mesh;
 
   // .node: "<points> 3 <attributes> <markers>", then "<index> x y z ..."
-  Result<TetGenFile> nodeFile = readTetGenFile(basePath + ".node");
+  Result<TetGenFile> nodeFile = readTetGenFile(basePath + ".node", limits);
   if (!nodeFile) return Error{nodeFile.message()};
+  if (Status s = checkEntryCount(*nodeFile, nodeFile->lines[0].second[0],
+                                 double(std::min(limits.maxNodes, kMaxIndexableNodes)), "points", "Limits::maxNodes");
+      !s)
+    return Error{s.message()};
   if (nodeFile->lines[0].second.size() >= 2 && nodeFile->lines[0].second[1] != 3)
     return nodeFile->error(nodeFile->lines[0].first, "only 3-dimensional points are supported");
   int base = -1;
@@ -108,8 +126,12 @@ Result<DeformableMesh> loadTetGen(const std::string& basePath, double density) {
   const int32_t nodeCount = mesh.nodeCount();
 
   // .ele: "<tets> 4 <attributes>", then "<index> n1 n2 n3 n4 ..."
-  Result<TetGenFile> eleFile = readTetGenFile(basePath + ".ele");
+  Result<TetGenFile> eleFile = readTetGenFile(basePath + ".ele", limits);
   if (!eleFile) return Error{eleFile.message()};
+  if (Status s = checkEntryCount(*eleFile, eleFile->lines[0].second[0], double(limits.maxTetrahedra), "tetrahedra",
+                                 "Limits::maxTetrahedra");
+      !s)
+    return Error{s.message()};
   if (eleFile->lines[0].second.size() >= 2 && eleFile->lines[0].second[1] != 4)
     return eleFile->error(eleFile->lines[0].first, "only 4-node tetrahedra are supported");
   int tetBase = -1;
@@ -143,8 +165,12 @@ Result<DeformableMesh> loadTetGen(const std::string& basePath, double density) {
   // .face (optional): "<faces> <markers>", then "<index> n1 n2 n3 ...", wound outwards here.
   std::ifstream probe(basePath + ".face");
   if (probe) {
-    Result<TetGenFile> faceFile = readTetGenFile(basePath + ".face");
+    Result<TetGenFile> faceFile = readTetGenFile(basePath + ".face", limits);
     if (!faceFile) return Error{faceFile.message()};
+    if (Status s = checkEntryCount(*faceFile, faceFile->lines[0].second[0], double(limits.maxTriangles), "faces",
+                                   "Limits::maxTriangles");
+        !s)
+      return Error{s.message()};
     std::map<std::array<int32_t, 3>, int32_t> opposite;  // a tet face (sorted) → the tet's other node
     for (const auto& t : mesh.tetrahedra)
       for (int k = 0; k < 4; ++k) {
@@ -177,15 +203,41 @@ Result<DeformableMesh> loadTetGen(const std::string& basePath, double density) {
   return mesh;
 }
 
-Result<DeformableMesh> loadObj(const std::string& path, double totalMass) {
+namespace {
+
+// tinyobjloader reads a coordinate it cannot parse ("nan", "inf", "1e999", "x") as 0: the
+// vertex lines are checked first, so such a file is refused with the line named.
+Status checkObjVertices(const std::string& path, const std::string& text) {
+  std::istringstream lines(text);
+  std::string line;
+  for (int number = 1; std::getline(lines, line); ++number) {
+    std::istringstream words(line);
+    std::string keyword;
+    if (!(words >> keyword) || keyword != "v") continue;
+    std::string word;
+    for (int k = 0; k < 3; ++k) {
+      if (!(words >> word)) return Error{path + ":" + std::to_string(number) + ": a vertex needs x, y and z"};
+      char* end = nullptr;
+      const double value = std::strtod(word.c_str(), &end);
+      if (end == word.c_str() || *end != '\0' || !std::isfinite(value))
+        return Error{path + ":" + std::to_string(number) + ": vertex coordinate '" + word + "' is not a finite number"};
+    }
+  }
+  return {};
+}
+
+}  // namespace
+
+Result<DeformableMesh> loadObj(const std::string& path, double totalMass, const Limits& limits) {
   if (!(std::isfinite(totalMass) && totalMass > 0))
     return Error{path + ": total mass must be a positive number of kilograms, got " + formatNumber(totalMass)};
-  std::error_code error;
-  if (std::filesystem::is_directory(path, error)) return Error{path + ": is a folder, not an OBJ file"};
+  Result<std::string> text = readInputFile(path, limits.maxMeshFileBytes, "OBJ file", "Limits::maxMeshFileBytes");
+  if (!text) return Error{text.message()};
+  if (Status s = checkObjVertices(path, *text); !s) return Error{s.message()};
   tinyobj::ObjReader reader;
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;
-  if (!reader.ParseFromFile(path, config)) {
+  if (!reader.ParseFromString(*text, "", config)) {
     std::string message = reader.Error();
     while (!message.empty() && message.back() == '\n') message.pop_back();
     return Error{path + ": " + (message.empty() ? "cannot read the file" : message)};
@@ -200,6 +252,10 @@ Result<DeformableMesh> loadObj(const std::string& path, double totalMass) {
       mesh.triangles.push_back({indices[i].vertex_index, indices[i + 1].vertex_index, indices[i + 2].vertex_index});
   }
   if (mesh.triangles.empty()) return Error{path + ": the file has no faces"};
+  if (Status s = checkMeshSize(double(mesh.positions.size()), double(mesh.triangles.size()), 0, limits, path,
+                               "the file");
+      !s)
+    return Error{s.message()};
   // Mass lumped by area: a third of each triangle's share to each of its vertices.
   mesh.masses.assign(mesh.positions.size(), 0.0);
   double area = 0.0;

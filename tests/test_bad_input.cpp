@@ -31,6 +31,56 @@ TEST(BadInput, Generators) {
   EXPECT_ERROR(makeTetBox({0, 0, 0}, {1, -1, 1}, 1, 1, 1, 1.0), "max corner must exceed min corner");
 }
 
+// Sizes: each generator bounds its total nodes, triangles and tetrahedra before allocating any
+// (a 3000 x 3000 cloth, a tet box of 1000^3 cells and a tet cylinder of 10^5 rings, sectors and
+// layers each hung with gigabytes allocated; past 2^31 nodes the int32 indices overflowed).
+TEST(BadInput, GeneratorsBoundTheirTotalSizes) {
+  EXPECT_ERROR(makeClothGrid({0, 0, 0}, {1, 0, 0}, {0, 0, 1}, 3000, 3000, 1.0),
+               "cloth grid: 3000 x 3000 nodes is 9000000 nodes, more than the limit of 1000000 (Limits::maxNodes; "
+               "the API can raise it)");
+  EXPECT_ERROR(makeRope({0, 0, 0}, {1, 0, 0}, std::numeric_limits<int>::max(), 1.0),
+               "rope: the node count is 2147483647 nodes, more than the limit of 1000000");
+  EXPECT_ERROR(makeRopeAlongPath({{0, 0, 0}, {1, 0, 0}}, 2'000'000, 1.0), "rope: the node count is 2000000 nodes");
+  EXPECT_ERROR(makeTetBox({0, 0, 0}, {1, 1, 1}, 1000, 1000, 1000, 1.0),
+               "tet box: 1000 x 1000 x 1000 cells is 1003003001 nodes, more than the limit of 1000000");
+  EXPECT_ERROR(makeTetCylinder({0, 0, 0}, 1, 1, 100000, 100000, 100000, 1.0),
+               "tet cylinder: 100000 rings x 100000 sectors x 100000 layers is 1000010000100001 nodes");
+  // Raising the limits past 32-bit indices does not let a mesh overflow them.
+  Limits unlimited;
+  unlimited.maxNodes = unlimited.maxTriangles = unlimited.maxTetrahedra = std::numeric_limits<int64_t>::max();
+  EXPECT_ERROR(makeClothGrid({0, 0, 0}, {1, 0, 0}, {0, 0, 1}, 100000, 100000, 1.0, unlimited),
+               "is 10000000000 nodes, more than the limit of 2147483647 (Limits::maxNodes");
+  EXPECT_ERROR(makeTetBox({0, 0, 0}, {1, 1, 1}, 2000, 2000, 2000, 1.0, unlimited), "more than the limit of 2147483647");
+}
+
+// The counts the limits are checked against are the meshes' own: a mesh of exactly the limit
+// is made, one more of anything is refused naming that limit.
+TEST(BadInput, SizeLimitsAreExact) {
+  auto exactly = [](const DeformableMesh& mesh) {
+    Limits limits;
+    limits.maxNodes = mesh.nodeCount();
+    limits.maxTriangles = static_cast<int64_t>(mesh.triangles.size());
+    limits.maxTetrahedra = static_cast<int64_t>(mesh.tetrahedra.size());
+    return limits;
+  };
+  auto oneShort = [](Limits limits, int which) {
+    (which == 0 ? limits.maxNodes : which == 1 ? limits.maxTriangles : limits.maxTetrahedra) -= 1;
+    return limits;
+  };
+  const char* names[] = {"Limits::maxNodes", "Limits::maxTriangles", "Limits::maxTetrahedra"};
+  const DeformableMesh cloth = *makeClothGrid({0, 0, 0}, {1, 0, 0}, {0, 0, 1}, 7, 5, 1.0);
+  const DeformableMesh box = *makeTetBox({0, 0, 0}, {1, 1, 1}, 3, 4, 5, 1.0);
+  const DeformableMesh cylinder = *makeTetCylinder({0, 0, 0}, 0.2, 0.5, 3, 12, 4, 1.0);
+  EXPECT_TRUE(makeClothGrid({0, 0, 0}, {1, 0, 0}, {0, 0, 1}, 7, 5, 1.0, exactly(cloth)).ok());
+  EXPECT_TRUE(makeTetBox({0, 0, 0}, {1, 1, 1}, 3, 4, 5, 1.0, exactly(box)).ok());
+  EXPECT_TRUE(makeTetCylinder({0, 0, 0}, 0.2, 0.5, 3, 12, 4, 1.0, exactly(cylinder)).ok());
+  for (int which = 0; which < 3; ++which) {
+    if (which < 2) EXPECT_ERROR(makeClothGrid({0, 0, 0}, {1, 0, 0}, {0, 0, 1}, 7, 5, 1.0, oneShort(exactly(cloth), which)), names[which]);
+    EXPECT_ERROR(makeTetBox({0, 0, 0}, {1, 1, 1}, 3, 4, 5, 1.0, oneShort(exactly(box), which)), names[which]);
+    EXPECT_ERROR(makeTetCylinder({0, 0, 0}, 0.2, 0.5, 3, 12, 4, 1.0, oneShort(exactly(cylinder), which)), names[which]);
+  }
+}
+
 // Using an error as a value is a programmer error: it stops with the error's message (it threw
 // std::bad_variant_access, which says nothing of what went wrong). An ok Result has no message.
 TEST(BadInputDeathTest, AnErrorUsedAsAValueStopsWithItsMessage) {

@@ -1,12 +1,15 @@
 // Contacts and friction: cloth against rigid shapes, against cloth and against itself.
 #include "collision/contact_motion.h"
+#include "collision/geometry.h"
 #include "rigid_distance.h"
 
 #include <tandem/world.h>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace tandem {
 namespace {
@@ -425,13 +428,18 @@ int countIntersections(std::span<const Vec3> x, const std::vector<std::array<int
   return count;
 }
 
-TEST(Contact, ClothFoldingOnItselfDoesNotPassThroughItself) {
+// A strip standing on its end folds onto itself without passing through, near the origin and
+// `depth` metres along z.
+class ClothFoldingOnItself : public testing::TestWithParam<double> {};
+
+TEST_P(ClothFoldingOnItself, DoesNotPassThroughItself) {
+  const double depth = GetParam();
   World world;
   ASSERT_TRUE(world.addRigidBody(staticBody("ground", RigidShape::plane({0, 1, 0}, 0.0), Vec3::Zero())).ok());
   // A strip standing on its end, tilted a little: it collapses and folds over itself.
   DeformableDesc strip;
   strip.name = "strip";
-  strip.mesh = *makeClothGrid({-0.15, 0.01, 0}, {0.3, 0, 0}, {0.25, 1.5, 0.02}, 7, 31, 0.1);
+  strip.mesh = *makeClothGrid({-0.15, 0.01, depth}, {0.3, 0, 0}, {0.25, 1.5, 0.02}, 7, 31, 0.1);
   strip.inextensibility.enabled = true;
   strip.bending.enabled = true;
   strip.bending.maxForce = 0.01;
@@ -442,7 +450,8 @@ TEST(Contact, ClothFoldingOnItselfDoesNotPassThroughItself) {
     const Status status = world.step(kStep);
     ASSERT_TRUE(status.ok()) << status.message();
   }
-  const auto x = world.nodePositions(id);
+  std::vector<Vec3> x;  // back at the origin: the crossing test's tolerances are absolute
+  for (const Vec3& p : world.nodePositions(id)) x.push_back(p - Vec3(0, 0, depth));
   // It did fold: its top end came down near the ground.
   double highest = 0.0;
   for (const Vec3& p : x) highest = std::max(highest, p.y());
@@ -451,6 +460,49 @@ TEST(Contact, ClothFoldingOnItselfDoesNotPassThroughItself) {
   int self = 0;
   for (const ContactReport& contact : world.contacts()) self += contact.other && *contact.other == id;
   EXPECT_GT(self, 0);  // it does lie on itself
+  std::printf("at z = %g m: highest node %.3f m, %d self contacts\n", depth, highest, self);
+}
+
+// At z = 2^28 m (2.7e8, past Limits::maxCoordinate) a 1 cm cell index is 2.7e10, past int32: it
+// was converted to int (undefined behaviour; on x86 every z went to one cell). The fold is the
+// same there as at the origin. (At 2^31 m the hash is still exact, see below, but positions
+// resolve 0.48 µm, coarser than the continuous test's 50 nm touch tolerance: 4 faces cross.)
+INSTANTIATE_TEST_SUITE_P(Depths, ClothFoldingOnItself, testing::Values(0.0, 268435456.0),
+                         [](const testing::TestParamInfo<double>& param) {
+                           return "AtZ" + std::to_string(static_cast<long long>(param.param)) + "Metres";
+                         });
+
+// The spatial hash's cells: 64-bit, exact far from the origin, clamped past 2^52 cells, a cell of
+// their own for non-finite coordinates; boxes and lookups of absurd size are bounded.
+TEST(SpatialHash, CellsStayExactFarFromTheOriginAndNonFiniteValuesHaveTheirOwnCell) {
+  geometry::SpatialHash grid;
+  grid.cell = 0.01;
+  const double far = 2147483648.0;  // 2^31 m
+  const geometry::SpatialHash::Cell a = grid.cellOf({0, 0, far}), b = grid.cellOf({0, 0, far + 0.01});
+  EXPECT_EQ(a.z(), 214748364800);
+  EXPECT_EQ(b.z() - a.z(), 1);
+  EXPECT_EQ(grid.cellOf({0, 0, -far}).z(), -214748364800);
+  EXPECT_EQ(grid.cellOf({1e300, -1e300, 0}).x(), static_cast<int64_t>(geometry::SpatialHash::kCellLimit));
+  EXPECT_EQ(grid.cellOf({1e300, -1e300, 0}).y(), -static_cast<int64_t>(geometry::SpatialHash::kCellLimit));
+  EXPECT_EQ(grid.cellOf({NAN, INFINITY, 0}).x(), geometry::SpatialHash::kNonFiniteCell);
+  EXPECT_EQ(grid.cellOf({NAN, INFINITY, 0}).y(), static_cast<int64_t>(geometry::SpatialHash::kCellLimit));
+
+  // Items far out are found where they are and not one cell over.
+  grid.insert({0, 0, far}, {0.005, 0.005, far + 0.005}, 7);
+  grid.insert({0, 0, far + 0.05}, {0.005, 0.005, far + 0.055}, 8);
+  // A box of 10^600 cells (a cloth side of 1e308 m), one with a NaN corner: kept everywhere.
+  grid.insert({-1e300, -1e300, -1e300}, {1e300, 1e300, 1e300}, 9);
+  grid.insert({NAN, 0, 0}, {1, 1, 1}, 10);
+  grid.sort();
+  std::vector<int32_t> found;
+  grid.visit({0.001, 0.001, far + 0.001}, 0.0, [&](int32_t item) { found.push_back(item); });
+  std::sort(found.begin(), found.end());
+  EXPECT_EQ(found, (std::vector<int32_t>{7, 9, 10}));
+  // A lookup over more cells than the hash holds visits every entry once instead.
+  found.clear();
+  grid.visit({0, 0, 0}, 1e300, [&](int32_t item) { found.push_back(item); });
+  std::sort(found.begin(), found.end());
+  EXPECT_EQ(found, (std::vector<int32_t>{7, 8, 9, 10}));
 }
 
 TEST(Contact, ClothsMeetingHeadOnFastDoNotPassAndKeepMomentum) {

@@ -148,8 +148,8 @@ INSTANTIATE_TEST_SUITE_P(
 TEST(MeshIO, MissingTetGenFilesAreNamed) {
   TempDir dir;
   dir.write("half.node", kCubeNode);
-  EXPECT_EQ(loadTetGen(dir.base("half"), 1000.0).message(), dir.base("half") + ".ele: cannot open the file");
-  EXPECT_EQ(loadTetGen(dir.base("none"), 1000.0).message(), dir.base("none") + ".node: cannot open the file");
+  EXPECT_EQ(loadTetGen(dir.base("half"), 1000.0).message(), dir.base("half") + ".ele: cannot open the TetGen file");
+  EXPECT_EQ(loadTetGen(dir.base("none"), 1000.0).message(), dir.base("none") + ".node: cannot open the TetGen file");
   EXPECT_EQ(loadTetGen(dir.base("half"), -1.0).message(),
             dir.base("half") + ": density must be a positive number of kg/m³, got -1");
 }
@@ -159,6 +159,32 @@ TEST(MeshIO, AFolderIsNotAMeshFile) {
   TempDir dir;
   const std::string folder = dir.base("");
   EXPECT_EQ(loadObj(folder, 1.0).message(), folder + ": is a folder, not an OBJ file");
+}
+
+// A device is not read (/dev/zero never ends), a file past the size limit is refused before it
+// is read, a mesh past the node limit after; the limits are named and can be raised.
+TEST(MeshIO, DevicesAndOversizedFilesAreRefused) {
+  EXPECT_EQ(loadObj("/dev/zero", 1.0).message(),
+            "/dev/zero: is not a regular file (a device, pipe or socket); OBJ files must be regular files");
+  TempDir dir;
+  const std::string path = dir.write("triangle.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  Limits limits;
+  limits.maxMeshFileBytes = 30;
+  EXPECT_EQ(loadObj(path, 1.0, limits).message(),
+            path + ": the OBJ file has 32 bytes, more than the limit of 30 (Limits::maxMeshFileBytes; the API can raise it)");
+  limits.maxMeshFileBytes = 32;
+  limits.maxNodes = 2;
+  EXPECT_EQ(loadObj(path, 1.0, limits).message(),
+            path + ": the file is 3 nodes, more than the limit of 2 (Limits::maxNodes; the API can raise it)");
+  limits.maxNodes = 3;
+  EXPECT_TRUE(loadObj(path, 1.0, limits).ok());
+  dir.write("big.node", kCubeNode);
+  dir.write("big.ele", kCubeEle);
+  limits.maxMeshFileBytes = 1 << 20;
+  limits.maxNodes = 7;
+  EXPECT_NE(loadTetGen(dir.base("big"), 1000.0, limits).message().find(".node:2: the file declares 8 points, more than the limit of 7 (Limits::maxNodes"),
+            std::string::npos)
+      << loadTetGen(dir.base("big"), 1000.0, limits).message();
 }
 
 TEST(MeshIO, ObjSurfaceLoadsTriangulatedWithAreaMasses) {

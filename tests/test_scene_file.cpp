@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <sys/wait.h>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -401,8 +402,54 @@ const std::vector<BadScene> kBadScenes{
     {"format_string", R"({"format": "1"})", "/format: must be an integer, got a string"},
     {"unknown_top", R"({"format": 1, "gravty": [0, -9.81, 0]})", "/gravty: unknown field 'gravty'"},
     {"duplicate", R"({"format": 1, "time_step": 0.01, "time_step": 0.02})", "field 'time_step' appears twice"},
-    {"time_step_zero", R"({"format": 1, "time_step": 0})", "/time_step: must be in (0, 1], got 0"},
-    {"time_step_huge", R"({"format": 1, "time_step": 5})", "/time_step: must be in (0, 1], got 5"},
+    {"time_step_zero", R"({"format": 1, "time_step": 0})", "/time_step: must be in [1e-06, 1], got 0"},
+    {"time_step_huge", R"({"format": 1, "time_step": 5})", "/time_step: must be in [1e-06, 1], got 5"},
+    // Physical magnitudes a run cannot survive (Limits): validate refuses what run would (each
+    // of these validated before and failed, hung or crashed at run time).
+    {"time_step_tiny", R"({"format": 1, "time_step": 1e-9})", "/time_step: must be in [1e-06, 1], got 1e-09"},
+    {"too_many_steps", R"({"format": 1, "time_step": 1e-6, "duration": 1000})",
+     "/duration: 1000 s at a time step of 1e-06 s is 1e+09 steps, more than a run's 10000000 (Limits::maxSteps)"},
+    {"gravity_huge", R"({"format": 1, "gravity": [0, -1e300, 0]})",
+     "/gravity: 1e+300 m/s^2 is more than 10000 m/s^2 (Limits::maxGravity)"},
+    {"position_far", scene(R"({"name": "box", "shape": {"type": "box", "half_extents": [0.1, 0.1, 0.1]}, "position": [0, 0, 1e308]})"),
+     "/rigid_bodies/0/position/2: 1e+308 m is farther from the origin than 1e+08 m (Limits::maxCoordinate)"},
+    {"radius_huge", scene(R"({"name": "ball", "shape": {"type": "sphere", "radius": 1e308}})"),
+     "/rigid_bodies/0/shape/radius: 1e+308 m is outside [0.0001, 1e+06] m (Limits::minSize, maxSize)"},
+    {"half_extent_tiny", scene(R"({"name": "box", "shape": {"type": "box", "half_extents": [1e-9, 0.1, 0.1]}})"),
+     "/rigid_bodies/0/shape/half_extents/0: 1e-09 m is outside [0.0001, 1e+06] m"},
+    {"speed_huge", scene(R"({"name": "box", "shape": {"type": "box", "half_extents": [0.1, 0.1, 0.1]}, "linear_velocity": [1e300, 0, 0]})"),
+     "/rigid_bodies/0/linear_velocity: a speed of 1e+300 m/s is not below the divergence speed of 10000 m/s"},
+    {"speed_over_divergence", R"({"format": 1, "divergence_speed": 50, "rigid_bodies": [{"name": "box", "shape": {"type": "box", "half_extents": [0.1, 0.1, 0.1]}, "linear_velocity": [0, 60, 0]}]})",
+     "/rigid_bodies/0/linear_velocity: a speed of 60 m/s is not below the divergence speed of 50 m/s"},
+    {"spin_huge", scene(R"({"name": "box", "shape": {"type": "box", "half_extents": [0.1, 0.1, 0.1]}, "angular_velocity": [0, 1e300, 0]})"),
+     "/rigid_bodies/0/angular_velocity: 1e+300 rad/s is faster than 10000 rad/s (Limits::maxAngularSpeed)"},
+    {"mass_tiny", scene(R"({"name": "box", "shape": {"type": "box", "half_extents": [0.1, 0.1, 0.1]}, "mass": 1e-300})"),
+     "/rigid_bodies/0/mass: 1e-300 kg is outside [1e-06, 1e+09] kg (Limits::minMass, maxMass)"},
+    {"deformable_mass_huge", scene(kBox, rope(R"("mass": 1e12)")), "/deformables/0/mass: 1e+12 kg is outside [1e-06, 1e+09] kg"},
+    {"density_mass_huge", scene(kBox, R"({"name": "jelly", "mesh": {"type": "tet_box", "min": [0, 0, 0], "max": [1, 1, 1], "cells": [1, 1, 1]}, "density": 1e12})"),
+     "/deformables/0/density: the total mass, 1e+12 kg, is outside [1e-06, 1e+09] kg"},
+    {"mass_ratio", scene(R"({"name": "box", "shape": {"type": "box", "half_extents": [0.1, 0.1, 0.1]}, "mass": 1e8})", kRope),
+     "/deformables/0/mass: a node of 0.02 kg against the body of 1e+08 kg (/rigid_bodies/0/mass) is a mass ratio of "
+     "5e+09, more than 1e+08 (Limits::maxMassRatio)"},
+    {"rope_far", scene(kBox, R"({"name": "rope", "mesh": {"type": "rope", "start": [0, 1e300, 0], "end": [0, 0, 0], "nodes": 5}, "mass": 0.1})"),
+     "/deformables/0/mesh/start/1: 1e+300 m is farther from the origin than 1e+08 m"},
+    {"initial_velocity_huge", scene(kBox, rope(R"("mass": 0.1, "initial_velocity": [0, 0, -2e4])")),
+     "/deformables/0/initial_velocity: a speed of 20000 m/s is not below the divergence speed of 10000 m/s"},
+    {"hinge_far", scene(kBox, "", "", R"(, "joints": [{"type": "hinge", "body_a": "box", "pivot": [1e10, 0, 0], "axis": [0, 0, 1]}])"),
+     "/joints/0/pivot/0: 1e+10 m is farther from the origin than 1e+08 m"},
+    // Sizes whose products no one bounded: each hung with gigabytes allocated (int32 indices
+    // overflowed past 2^31 nodes).
+    {"cloth_huge", scene(kBox, R"({"name": "c", "mesh": {"type": "cloth_grid", "corner": [0, 0, 0], "side_u": [1, 0, 0], "side_v": [0, 0, 1], "columns": 3000, "rows": 3000}, "mass": 1})"),
+     "/deformables/0/mesh: cloth grid: 3000 x 3000 nodes is 9000000 nodes, more than the limit of 1000000 "
+     "(Limits::maxNodes; the API can raise it)"},
+    {"tet_box_huge", scene(kBox, R"({"name": "c", "mesh": {"type": "tet_box", "min": [0, 0, 0], "max": [1, 1, 1], "cells": [1000, 1000, 1000]}, "mass": 1})"),
+     "/deformables/0/mesh: tet box: 1000 x 1000 x 1000 cells is 1003003001 nodes, more than the limit of 1000000"},
+    {"tet_box_many_tets", scene(kBox, R"({"name": "c", "mesh": {"type": "tet_box", "min": [0, 0, 0], "max": [1, 1, 1], "cells": [400, 400, 2]}, "mass": 1})"),
+     "tet box: 400 x 400 x 2 cells is 1600000 tetrahedra, more than the limit of 1000000 (Limits::maxTetrahedra"},
+    {"tet_cylinder_huge", scene(kBox, R"({"name": "c", "mesh": {"type": "tet_cylinder", "base_centre": [0, 0, 0], "radius": 1, "height": 1, "rings": 100000, "sectors": 100000, "layers": 100000}, "mass": 1})"),
+     "tet cylinder: 100000 rings x 100000 sectors x 100000 layers is 1000010000100001 nodes, more than the limit"},
+    {"obj_dev_zero", scene(kBox, R"({"name": "c", "mesh": {"type": "obj", "file": "/dev/zero"}, "mass": 1})"),
+     "/deformables/0/mesh: /dev/zero: is not a regular file (a device, pipe or socket); OBJ files must be regular files"},
     {"gravity_short", R"({"format": 1, "gravity": [0, -9.81]})", "/gravity: must be an array of 3 numbers"},
     {"gravity_overflow", R"({"format": 1, "gravity": [0, -1e999, 0]})", "not valid JSON: number overflow parsing '-1e999'"},
     {"iterations_zero", R"({"format": 1, "solver": {"iterations": 0}})", "/solver/iterations: must be in [1, 1000], got 0"},
@@ -505,12 +552,71 @@ TEST_P(BadSceneFile, IsRefusedWithItsMessage) {
   char buffer[512];
   while (size_t n = fread(buffer, 1, sizeof buffer, pipe)) output.append(buffer, n);
   const int exitStatus = pclose(pipe);
-  EXPECT_NE(exitStatus, 0);
+  ASSERT_TRUE(WIFEXITED(exitStatus)) << output;  // not a crash
+  EXPECT_EQ(WEXITSTATUS(exitStatus), 3) << output;  // bad input (README: exit codes)
   EXPECT_NE(output.find(bad.message), std::string::npos) << output;
 }
 
 INSTANTIATE_TEST_SUITE_P(Table, BadSceneFile, testing::ValuesIn(kBadScenes),
                          [](const testing::TestParamInfo<BadScene>& param) { return std::string(param.param.name); });
+
+// The scene reader's own limits: a device is not read (it never ends), a file past the size
+// limit is refused before it is read, and a caller can raise the limits.
+TEST(SceneFile, DevicesAndOversizedFilesAreRefusedAndTheLimitsCanBeRaised) {
+  EXPECT_EQ(loadScene("/dev/zero").message(),
+            "/dev/zero: is not a regular file (a device, pipe or socket); scene files must be regular files");
+  const std::string path = writeFile("small.json", R"({"format": 1, "description": "twenty-odd bytes"})");
+  Limits limits;
+  limits.maxSceneFileBytes = 20;
+  EXPECT_NE(loadScene(path, limits).message().find("small.json: the scene file has 48 bytes, more than the limit of 20 "
+                                                   "(Limits::maxSceneFileBytes; the API can raise it)"),
+            std::string::npos)
+      << loadScene(path, limits).message();
+  EXPECT_TRUE(loadScene(path).ok());
+
+  // Physical bounds and sizes are raised the same way: gravity past the default, a cloth past
+  // the default node count (then built: 1,001 x 1,000 nodes).
+  const std::string heavy = writeFile("heavy.json", R"({"format": 1, "gravity": [0, -2e4, 0], "deformables": [
+      {"name": "c", "mesh": {"type": "cloth_grid", "corner": [0, 0, 0], "side_u": [1, 0, 0], "side_v": [0, 0, 1],
+       "columns": 1001, "rows": 1000}, "mass": 1}]})");
+  EXPECT_NE(loadScene(heavy).message().find("/gravity: 20000 m/s^2 is more than 10000 m/s^2"), std::string::npos);
+  Limits raised;
+  raised.maxGravity = 3e4;
+  Result<Scene> scene = loadScene(heavy, raised);
+  ASSERT_TRUE(scene.ok()) << scene.message();
+  World refused;
+  EXPECT_NE(buildScene(*scene, refused).message().find("1001 x 1000 nodes is 1001000 nodes, more than the limit of 1000000"),
+            std::string::npos);
+  raised.maxNodes = 1'001'000;
+  World built;
+  ASSERT_TRUE(buildScene(*scene, built, raised).ok());
+  EXPECT_EQ(built.nodePositions(DeformableId{0}).size(), 1'001'000u);
+}
+
+// Mesh files: coordinates tinyobjloader would read as 0 are refused with the line; points past
+// Limits::maxCoordinate are refused with the point.
+TEST(SceneFile, MeshFilesWithBadOrFarCoordinatesAreRefused) {
+  writeFile("nan.obj", "v 0 0 0\nv 1 0 nan\nv 0 1 0\nf 1 2 3\n");
+  writeFile("far.obj", "v 2e9 0 0\nv 2e9 1000 0\nv 2e9 0 1000\nf 1 2 3\n");
+  for (const auto& [file, message] :
+       std::vector<std::pair<std::string, std::string>>{{"nan.obj", "nan.obj:2: vertex coordinate 'nan' is not a finite number"},
+                                                        {"far.obj", "/deformables/0/mesh: point 0 at 2e+09 m from the origin "
+                                                                    "along an axis is farther than 1e+08 m (Limits::maxCoordinate)"}}) {
+    const std::string path = writeFile("mesh_" + file + ".json", R"({"format": 1, "deformables": [{"name": "c", "mesh": {"type": "obj", "file": ")" +
+                                                                   file + R"("}, "mass": 1}]})");
+    Result<Scene> scene = loadScene(path);
+    ASSERT_TRUE(scene.ok()) << scene.message();
+    World world;
+    const Status status = buildScene(*scene, world);
+    EXPECT_NE(status.message().find(message), std::string::npos) << status.message();
+  }
+  // TetGen files are read through the same door: a .node that is a device is refused.
+  const fs::path zero = tempDir() / "zero.node";
+  fs::remove(zero);
+  fs::create_symlink("/dev/zero", zero);
+  EXPECT_EQ(loadTetGen((tempDir() / "zero").string(), 1000.0).message(),
+            zero.string() + ": is not a regular file (a device, pipe or socket); TetGen files must be regular files");
+}
 
 TEST(SceneFile, AMissingFileIsNamed) {
   EXPECT_EQ(loadScene("/no/such/scene.json").message(), "/no/such/scene.json: cannot open the scene file");

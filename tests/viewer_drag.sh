@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
 # Scripted mouse input to `tandem view` under Xvfb: presses the left button at pixel (X0, Y0),
-# moves to (X1, Y1) in small steps, releases, and lets the viewer run out its wall-clock time.
+# moves to (X1, Y1) in small steps, holds, releases, lets the scene settle, then tells the viewer
+# to quit (SIGTERM: it finishes its frame and prints where the dynamic bodies are). The script
+# decides when the viewer stops, so no xdotool call can meet a window that is already gone (the
+# old wall-clock limit raced the drag on a loaded machine: "X Error ... BadWindow").
 # It prints the viewer's output (the dynamic bodies' final positions) for the caller to check.
 # Usage: viewer_drag.sh TANDEM SCENE X0 Y0 X1 Y1 [CAMERA]   (CAMERA: ex,ey,ez,tx,ty,tz)
 set -euo pipefail
@@ -9,9 +12,12 @@ script=$(mktemp)
 trap 'rm -f "$script"' EXIT
 cat > "$script" <<INNER
 set -euo pipefail
-"$tandem" view "$scene" --width 960 --height 540 --camera $camera --max-seconds 6 &
+# --max-seconds only guards against a hang; the script ends the viewer with SIGTERM.
+"$tandem" view "$scene" --width 960 --height 540 --camera $camera --max-seconds 300 &
 viewer=\$!
-window=\$(xdotool search --sync --name Tandem | head -1)
+trap 'kill -TERM \$viewer 2>/dev/null || true' EXIT
+window=\$(timeout 60 xdotool search --sync --name Tandem | head -1 || true)
+if [ -z "\$window" ]; then echo "viewer_drag.sh: no Tandem window within 60 s" >&2; exit 1; fi
 sleep 1
 xdotool mousemove --window "\$window" $x0 $y0
 sleep 0.3
@@ -20,8 +26,11 @@ for i in \$(seq 1 40); do
   xdotool mousemove --window "\$window" \$(( $x0 + ($x1 - $x0) * i / 40 )) \$(( $y0 + ($y1 - $y0) * i / 40 ))
   sleep 0.03
 done
-sleep 0.5
+sleep 1
 xdotool mouseup 1
+sleep 1
+kill -TERM \$viewer
+trap - EXIT
 wait \$viewer
 INNER
 xvfb-run -a -s "-screen 0 1280x720x24" bash "$script"

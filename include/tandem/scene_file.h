@@ -7,6 +7,7 @@
 #pragma once
 
 #include <tandem/export.h>
+#include <tandem/limits.h>
 #include <tandem/world.h>
 
 #include <array>
@@ -106,17 +107,22 @@ struct Scene {
   std::string directory;
 };
 
-// Reads and checks a scene file. A problem gives "FILE: /json/path: what is wrong".
-TANDEM_API Result<Scene> loadScene(const std::string& path);
+// Reads and checks a scene file. A problem gives "FILE: /json/path: what is wrong". Besides the
+// format, the file's size and the scene's physical magnitudes (positions, sizes, masses, speeds,
+// gravity, time step and run length) are checked against `limits`: what loads and builds can run.
+TANDEM_API Result<Scene> loadScene(const std::string& path, const Limits& limits = {});
 // The same from text; `fileName` names it in messages, `directory` is where meshes are found.
-TANDEM_API Result<Scene> parseScene(std::string_view json, const std::string& fileName, const std::string& directory);
+TANDEM_API Result<Scene> parseScene(std::string_view json, const std::string& fileName, const std::string& directory,
+                         const Limits& limits = {});
 
 // The scene as a scene file (every field written, numbers to the last bit).
 TANDEM_API std::string sceneToJson(const Scene& scene);
 
 // Adds everything in the scene to `world` (which should be empty) and applies its settings.
 // Problems found only now (a mesh file that does not load, a node index out of range, a body
-// the world refuses) are named like parse errors.
-TANDEM_API Status buildScene(const Scene& scene, World& world);
+// the world refuses) are named like parse errors. Meshes are generated and read within `limits`
+// (sizes), and checked against it (node positions, a deformable's total mass, the ratio of the
+// heaviest dynamic mass to the lightest, nodes included).
+TANDEM_API Status buildScene(const Scene& scene, World& world, const Limits& limits = {});
 
 }  // namespace tandem

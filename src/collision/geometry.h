@@ -137,33 +137,72 @@ struct ShapeDistance {
 inline ShapeDistance distanceToShape(const RigidShape& shape, const Vec3& q);
 
 // A sorted spatial hash: items inserted into every cell their box covers, looked up by point.
+//
+// Cell coordinates are 64-bit and computed in double before any conversion: a coordinate / cell
+// ratio is clamped to ±kCellLimit (where a double still resolves single cells exactly; 2^52 of
+// them is 4.5e12 km at 1 mm cells), so positions far from the origin (a cloth at z = 2^31 m)
+// hash into distinct cells as they do near it, and nothing converts a value out of int range.
+// A non-finite coordinate (NaN, ±inf) goes to one cell of its own (kNonFiniteCell), away from
+// every finite position. Boxes covering more than kMaxCellsPerBox cells (only absurd sizes do)
+// are kept in a list every lookup visits; a lookup covering more cells than the hash has entries
+// visits every entry. Either way every item that could be in reach is visited, in bounded time.
 struct SpatialHash {
+  using Cell = Eigen::Matrix<int64_t, 3, 1>;
+  static constexpr double kCellLimit = 4503599627370496.0;  // 2^52
+  static constexpr int64_t kNonFiniteCell = (int64_t{1} << 53) + 1;
+  static constexpr int64_t kMaxCellsPerBox = 4096;
+
   double cell = 1.0;
   std::vector<std::pair<uint64_t, int32_t>> entries;  // (cell hash, item), sorted once filled
+  std::vector<int32_t> everywhere;                     // items whose box covers too many cells
 
-  Eigen::Vector3i cellOf(const Vec3& p) const {
-    return Eigen::Vector3i(static_cast<int>(std::floor(p.x() / cell)), static_cast<int>(std::floor(p.y() / cell)),
-                           static_cast<int>(std::floor(p.z() / cell)));
+  static int64_t cellIndex(double coordinate, double cellSize) {
+    const double scaled = std::floor(coordinate / cellSize);
+    if (std::isnan(scaled)) return kNonFiniteCell;
+    return static_cast<int64_t>(std::clamp(scaled, -kCellLimit, kCellLimit));
   }
-  static uint64_t hash(const Eigen::Vector3i& c) {
+  Cell cellOf(const Vec3& p) const { return Cell(cellIndex(p.x(), cell), cellIndex(p.y(), cell), cellIndex(p.z(), cell)); }
+  static uint64_t hash(const Cell& c) {
     return static_cast<uint64_t>(c.x()) * 73856093ull ^ static_cast<uint64_t>(c.y()) * 19349663ull ^
            static_cast<uint64_t>(c.z()) * 83492791ull;
   }
+  // Cells in the box from..to, or -1 when more than kMaxCellsPerBox (or a side is non-finite).
+  static int64_t cellsIn(const Cell& from, const Cell& to) {
+    int64_t cells = 1;
+    for (int k = 0; k < 3; ++k) {
+      if ((from[k] == kNonFiniteCell) != (to[k] == kNonFiniteCell)) return -1;
+      const int64_t side = to[k] - from[k] + 1;  // at most 2^53 + 2: no overflow
+      if (side <= 0) return 0;
+      if (side > kMaxCellsPerBox || cells * side > kMaxCellsPerBox) return -1;
+      cells *= side;
+    }
+    return cells;
+  }
   void insert(const Vec3& low, const Vec3& high, int32_t item) {
-    const Eigen::Vector3i from = cellOf(low), to = cellOf(high);
-    for (int x = from.x(); x <= to.x(); ++x)
-      for (int y = from.y(); y <= to.y(); ++y)
-        for (int z = from.z(); z <= to.z(); ++z) entries.emplace_back(hash({x, y, z}), item);
+    const Cell from = cellOf(low), to = cellOf(high);
+    if (cellsIn(from, to) < 0) {
+      everywhere.push_back(item);
+      return;
+    }
+    for (int64_t x = from.x(); x <= to.x(); ++x)
+      for (int64_t y = from.y(); y <= to.y(); ++y)
+        for (int64_t z = from.z(); z <= to.z(); ++z) entries.emplace_back(hash(Cell(x, y, z)), item);
   }
   void sort() { std::sort(entries.begin(), entries.end()); }
   // Every item in the cells within `reach` of p (an item may come more than once).
   template <class Visit>
   void visit(const Vec3& p, double reach, Visit&& visitItem) const {
-    const Eigen::Vector3i from = cellOf(p - Vec3::Constant(reach)), to = cellOf(p + Vec3::Constant(reach));
-    for (int x = from.x(); x <= to.x(); ++x)
-      for (int y = from.y(); y <= to.y(); ++y)
-        for (int z = from.z(); z <= to.z(); ++z) {
-          const uint64_t key = hash({x, y, z});
+    for (int32_t item : everywhere) visitItem(item);
+    const Cell from = cellOf(p - Vec3::Constant(reach)), to = cellOf(p + Vec3::Constant(reach));
+    const int64_t cells = cellsIn(from, to);
+    if (cells < 0 || cells > static_cast<int64_t>(entries.size())) {
+      for (const auto& entry : entries) visitItem(entry.second);
+      return;
+    }
+    for (int64_t x = from.x(); x <= to.x(); ++x)
+      for (int64_t y = from.y(); y <= to.y(); ++y)
+        for (int64_t z = from.z(); z <= to.z(); ++z) {
+          const uint64_t key = hash(Cell(x, y, z));
           for (auto it = std::lower_bound(entries.begin(), entries.end(), std::make_pair(key, INT32_MIN));
                it != entries.end() && it->first == key; ++it)
             visitItem(it->second);

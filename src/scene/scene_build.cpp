@@ -2,7 +2,12 @@
 // and whatever the world refuses reported with the JSON path of what it refused.
 #include <tandem/scene_file.h>
 
+#include "format.h"
+
 #include <filesystem>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <map>
 
 namespace tandem {
@@ -33,17 +38,19 @@ double meshMeasure(const DeformableMesh& mesh) {
 }
 
 // The mesh with unit total mass, spread as its generator or loader spreads it.
-Result<DeformableMesh> makeMesh(const Scene& scene, const SceneMesh& m) {
+Result<DeformableMesh> makeMesh(const Scene& scene, const SceneMesh& m, const Limits& limits) {
   using Kind = SceneMesh::Kind;
   switch (m.kind) {
-    case Kind::Rope: return m.path.empty() ? makeRope(m.start, m.end, m.nodes, 1.0) : makeRopeAlongPath(m.path, m.nodes, 1.0);
-    case Kind::ClothGrid: return makeClothGrid(m.corner, m.sideU, m.sideV, m.columns, m.rows, 1.0);
-    case Kind::TetBox: return makeTetBox(m.minCorner, m.maxCorner, m.cells[0], m.cells[1], m.cells[2], 1.0);
+    case Kind::Rope:
+      return m.path.empty() ? makeRope(m.start, m.end, m.nodes, 1.0, limits)
+                            : makeRopeAlongPath(m.path, m.nodes, 1.0, limits);
+    case Kind::ClothGrid: return makeClothGrid(m.corner, m.sideU, m.sideV, m.columns, m.rows, 1.0, limits);
+    case Kind::TetBox: return makeTetBox(m.minCorner, m.maxCorner, m.cells[0], m.cells[1], m.cells[2], 1.0, limits);
     case Kind::TetCylinder:
-      return makeTetCylinder(m.baseCentre, m.radius, m.height, m.rings, m.sectors, m.layers, 1.0);
-    case Kind::Obj: return loadObj(resolve(scene, m.file), 1.0);
+      return makeTetCylinder(m.baseCentre, m.radius, m.height, m.rings, m.sectors, m.layers, 1.0, limits);
+    case Kind::Obj: return loadObj(resolve(scene, m.file), 1.0, limits);
     case Kind::TetGen: {
-      Result<DeformableMesh> mesh = loadTetGen(resolve(scene, m.file), 1.0);
+      Result<DeformableMesh> mesh = loadTetGen(resolve(scene, m.file), 1.0, limits);
       if (!mesh) return mesh;
       double total = 0;
       for (double mass : mesh->masses) total += mass;
@@ -54,21 +61,43 @@ Result<DeformableMesh> makeMesh(const Scene& scene, const SceneMesh& m) {
   return Error{"unknown mesh kind"};
 }
 
-DeformableMesh deformableMesh(const Scene& scene, const SceneDeformable& deformable, const std::string& path) {
-  Result<DeformableMesh> mesh = makeMesh(scene, deformable.mesh);
+std::string bounds(double low, double high) {
+  char text[64];
+  std::snprintf(text, sizeof text, "[%g, %g]", low, high);
+  return text;
+}
+
+// Points farther out than Limits::maxCoordinate (a mesh file's, or an OBJ shape's) are refused.
+void checkCoordinates(const std::vector<Vec3>& points, const Limits& limits, const std::string& path) {
+  for (size_t i = 0; i < points.size(); ++i)
+    if (points[i].cwiseAbs().maxCoeff() > limits.maxCoordinate)
+      throw BuildError{path + ": point " + std::to_string(i) + " at " + formatNumber(points[i].cwiseAbs().maxCoeff()) +
+                       " m from the origin along an axis is farther than " + formatNumber(limits.maxCoordinate) +
+                       " m (Limits::maxCoordinate)"};
+}
+
+DeformableMesh deformableMesh(const Scene& scene, const SceneDeformable& deformable, const std::string& path,
+                              const Limits& limits) {
+  Result<DeformableMesh> mesh = makeMesh(scene, deformable.mesh, limits);
   if (!mesh) throw BuildError{path + "/mesh: " + mesh.message()};
+  checkCoordinates(mesh->positions, limits, path + "/mesh");
   const double totalMass = deformable.mass ? *deformable.mass : *deformable.density * meshMeasure(*mesh);
   if (!(totalMass > 0 && std::isfinite(totalMass)))
     throw BuildError{path + "/density: the mesh has no volume, area or length to give a mass"};
+  if (totalMass < limits.minMass || totalMass > limits.maxMass)
+    throw BuildError{path + (deformable.mass ? std::string("/mass: ") : std::string("/density: the total mass, ")) +
+                     formatNumber(totalMass) + " kg, is outside " + bounds(limits.minMass, limits.maxMass) +
+                     " kg (Limits::minMass, maxMass)"};
   for (double& mass : mesh->masses) mass *= totalMass;
   return std::move(mesh).value();
 }
 
-RigidBodyDesc rigidDesc(const Scene& scene, const SceneRigidBody& body, const std::string& path) {
+RigidBodyDesc rigidDesc(const Scene& scene, const SceneRigidBody& body, const std::string& path, const Limits& limits) {
   RigidBodyDesc desc = body.desc;
   if (body.shapeFile.empty()) return desc;
-  Result<DeformableMesh> obj = loadObj(resolve(scene, body.shapeFile), 1.0);
+  Result<DeformableMesh> obj = loadObj(resolve(scene, body.shapeFile), 1.0, limits);
   if (!obj) throw BuildError{path + "/shape/file: " + obj.message()};
+  checkCoordinates(obj->positions, limits, path + "/shape/file");
   desc.shape.points = obj->positions;
   desc.shape.triangles = obj->triangles;
   if (desc.shape.type == ShapeType::ConvexHull) desc.shape.triangles.clear();
@@ -132,13 +161,40 @@ AnchorDesc anchorDesc(const World& world, DeformableId deformable, RigidBodyId b
   return desc;
 }
 
-void build(const Scene& scene, World& world) {
+// The heaviest and the lightest dynamic mass of the scene (rigid bodies, and deformables' nodes),
+// with where each comes from: a ratio past Limits::maxMassRatio is more than double precision
+// and the solver's iterations can hold together.
+struct MassRange {
+  struct Mass {
+    double kg = 0.0;
+    std::string path;  // where it is set in the file
+    std::string what;  // "the body", "a node"
+  };
+  Mass lightest{INFINITY, "", ""}, heaviest{0.0, "", ""};
+
+  void add(double kg, const std::string& path, const char* what) {
+    if (kg < lightest.kg) lightest = {kg, path, what};
+    if (kg > heaviest.kg) heaviest = {kg, path, what};
+  }
+  void check(const Limits& limits) const {
+    if (heaviest.kg == 0.0 || heaviest.kg / lightest.kg <= limits.maxMassRatio) return;
+    throw BuildError{lightest.path + ": " + lightest.what + " of " + formatNumber(lightest.kg) + " kg against " +
+                     heaviest.what + " of " + formatNumber(heaviest.kg) + " kg (" + heaviest.path +
+                     ") is a mass ratio of " + formatNumber(heaviest.kg / lightest.kg) + ", more than " +
+                     formatNumber(limits.maxMassRatio) + " (Limits::maxMassRatio)"};
+  }
+};
+
+void build(const Scene& scene, World& world, const Limits& limits) {
+  MassRange masses;
   check(world.setSettings(scene.settings), "/solver");
   std::map<std::string, RigidBodyId> rigid;
   for (size_t i = 0; i < scene.rigidBodies.size(); ++i) {
     const std::string path = "/rigid_bodies/" + std::to_string(i);
-    Result<RigidBodyId> id = world.addRigidBody(rigidDesc(scene, scene.rigidBodies[i], path));
+    Result<RigidBodyId> id = world.addRigidBody(rigidDesc(scene, scene.rigidBodies[i], path, limits));
     check(id.status(), path);
+    if (scene.rigidBodies[i].desc.motion == MotionType::Dynamic)
+      masses.add(scene.rigidBodies[i].desc.mass, path + "/mass", "the body");
     rigid[scene.rigidBodies[i].desc.name] = *id;
   }
   for (size_t i = 0; i < scene.joints.size(); ++i) {
@@ -161,7 +217,12 @@ void build(const Scene& scene, World& world) {
     const SceneDeformable& deformable = scene.deformables[i];
     const std::string path = "/deformables/" + std::to_string(i);
     DeformableDesc desc = deformable.desc;
-    desc.mesh = deformableMesh(scene, deformable, path);
+    desc.mesh = deformableMesh(scene, deformable, path, limits);
+    const std::string massPath = path + (deformable.mass ? "/mass" : "/density");
+    const auto [lightest, heaviest] = std::minmax_element(desc.mesh.masses.begin(), desc.mesh.masses.end());
+    masses.add(*lightest, massPath, "a node");
+    masses.add(*heaviest, massPath, "a node");
+    masses.check(limits);
     Result<DeformableId> id = world.addDeformable(desc);
     check(id.status(), path);
     deformables[desc.name] = *id;
@@ -176,14 +237,15 @@ void build(const Scene& scene, World& world) {
     const AnchorDesc desc = anchorDesc(world, deformables.at(anchor.deformable), rigid.at(anchor.body), anchor, path);
     check(world.addAnchor(desc).status(), path);
   }
+  masses.check(limits);
 }
 
 }  // namespace
 
-Status buildScene(const Scene& scene, World& world) {
+Status buildScene(const Scene& scene, World& world, const Limits& limits) {
   const std::string file = scene.sourceFile.empty() ? "scene" : scene.sourceFile;
   try {
-    build(scene, world);
+    build(scene, world, limits);
     return {};
   } catch (const BuildError& error) {
     return Error{file + ": " + error.message};

@@ -5,10 +5,10 @@
 
 #include <tandem/scene_file.h>
 
+#include "input_file.h"
+
 #include <filesystem>
-#include <fstream>
 #include <map>
-#include <sstream>
 
 namespace tandem {
 namespace {
@@ -16,6 +16,40 @@ namespace {
 using scene::fail;
 using scene::Json;
 using scene::ObjectReader;
+
+// The physical magnitudes a run can survive (Limits), checked where each value is read: a value
+// past its bound is refused with its JSON path, the value and the bound.
+struct Bounds {
+  const Limits& limits;
+  double divergenceSpeed = 0.0;  // the scene's own
+
+  void coordinates(const Vec3& x, const std::string& path) const {
+    for (int k = 0; k < 3; ++k)
+      if (std::abs(x[k]) > limits.maxCoordinate)
+        fail(path + "/" + std::to_string(k), scene::formatValue(x[k]) + " m is farther from the origin than " +
+                                                 scene::formatValue(limits.maxCoordinate) + " m (Limits::maxCoordinate)");
+  }
+  void size(double value, const std::string& path) const {
+    if (value < limits.minSize || value > limits.maxSize)
+      fail(path, scene::formatValue(value) + " m is outside [" + scene::formatValue(limits.minSize) + ", " +
+                     scene::formatValue(limits.maxSize) + "] m (Limits::minSize, maxSize)");
+  }
+  void mass(double value, const std::string& path) const {
+    if (value < limits.minMass || value > limits.maxMass)
+      fail(path, scene::formatValue(value) + " kg is outside [" + scene::formatValue(limits.minMass) + ", " +
+                     scene::formatValue(limits.maxMass) + "] kg (Limits::minMass, maxMass)");
+  }
+  void speed(const Vec3& velocity, const std::string& path) const {
+    if (!(velocity.stableNorm() < divergenceSpeed))
+      fail(path, "a speed of " + scene::formatValue(velocity.stableNorm()) + " m/s is not below the divergence speed of " +
+                     scene::formatValue(divergenceSpeed) + " m/s (/divergence_speed): the run would stop at its first step");
+  }
+  void angularSpeed(const Vec3& velocity, const std::string& path) const {
+    if (velocity.stableNorm() > limits.maxAngularSpeed)
+      fail(path, scene::formatValue(velocity.stableNorm()) + " rad/s is faster than " +
+                     scene::formatValue(limits.maxAngularSpeed) + " rad/s (Limits::maxAngularSpeed)");
+  }
+};
 
 // Array `key` of `reader` (optional: empty when missing), each element with its path.
 template <class Visit>
@@ -55,7 +89,7 @@ std::vector<Vec3> readPoints(const Json& value, const std::string& path) {
   return points;
 }
 
-void readShape(ObjectReader& body, SceneRigidBody& out) {
+void readShape(ObjectReader& body, SceneRigidBody& out, const Bounds& bounds) {
   ObjectReader shape(body.required("shape"), body.fieldPath("shape"));
   RigidShape& s = out.desc.shape;
   shape.required("type");
@@ -68,19 +102,26 @@ void readShape(ObjectReader& body, SceneRigidBody& out) {
     case ShapeType::Box: {
       s.halfExtents = shape.vec3("half_extents");
       if (!(s.halfExtents.minCoeff() > 0)) fail(shape.fieldPath("half_extents"), "must all be > 0");
+      for (int k = 0; k < 3; ++k) bounds.size(s.halfExtents[k], shape.fieldPath("half_extents") + "/" + std::to_string(k));
       break;
     }
-    case ShapeType::Sphere: s.radius = positiveRequired("radius"); break;
+    case ShapeType::Sphere:
+      s.radius = positiveRequired("radius");
+      bounds.size(s.radius, shape.fieldPath("radius"));
+      break;
     case ShapeType::Cylinder:
     case ShapeType::Capsule:
       s.radius = positiveRequired("radius");
       s.halfHeight = positiveRequired("half_height");
+      bounds.size(s.radius, shape.fieldPath("radius"));
+      bounds.size(s.halfHeight, shape.fieldPath("half_height"));
       break;
     case ShapeType::Plane:
       s.planeNormal = shape.vec3("normal");
       if (s.planeNormal.norm() < 1e-9) fail(shape.fieldPath("normal"), "must not be zero");
       s.planeNormal.normalize();
       s.planeOffset = shape.number("offset", 0.0);
+      bounds.coordinates(Vec3::Constant(s.planeOffset), shape.fieldPath("offset"));
       break;
     case ShapeType::ConvexHull:
     case ShapeType::TriangleMesh: {
@@ -93,6 +134,8 @@ void readShape(ObjectReader& body, SceneRigidBody& out) {
         break;
       }
       s.points = readPoints(shape.required(pointsKey), shape.fieldPath(pointsKey));
+      for (size_t i = 0; i < s.points.size(); ++i)
+        bounds.coordinates(s.points[i], shape.fieldPath(pointsKey) + "/" + std::to_string(i));
       if (s.type == ShapeType::TriangleMesh) {
         const Json& triangles = shape.required("triangles");
         const std::string path = shape.fieldPath("triangles");
@@ -111,21 +154,25 @@ void readShape(ObjectReader& body, SceneRigidBody& out) {
   shape.finish();
 }
 
-SceneRigidBody readRigidBody(const Json& value, const std::string& path) {
+SceneRigidBody readRigidBody(const Json& value, const std::string& path, const Bounds& bounds) {
   ObjectReader body(value, path);
   SceneRigidBody out;
   RigidBodyDesc& d = out.desc;
   d.name = body.string("name");
-  readShape(body, out);
+  readShape(body, out, bounds);
   d.mass = body.nonNegative("mass", 1.0);
+  if (d.mass != 0) bounds.mass(d.mass, body.fieldPath("mass"));
   const bool kinematic = body.boolean("kinematic", false);
   d.motion = kinematic ? MotionType::Kinematic : d.mass == 0 ? MotionType::Static : MotionType::Dynamic;
   if ((d.shape.type == ShapeType::Plane || d.shape.type == ShapeType::TriangleMesh) && d.motion == MotionType::Dynamic)
     fail(body.fieldPath("mass"), "a plane or triangle mesh must be static (mass 0) or kinematic");
   d.position = body.vec3("position", Vec3::Zero());
+  bounds.coordinates(d.position, body.fieldPath("position"));
   d.orientation = readOrientation(body);
   d.linearVelocity = body.vec3("linear_velocity", Vec3::Zero());
+  bounds.speed(d.linearVelocity, body.fieldPath("linear_velocity"));
   d.angularVelocity = body.vec3("angular_velocity", Vec3::Zero());
+  bounds.angularSpeed(d.angularVelocity, body.fieldPath("angular_velocity"));
   d.friction = body.nonNegative("friction", d.friction);
   d.restitution = body.numberIn("restitution", d.restitution, 0.0, 1.0);
   d.canSleep = body.boolean("can_sleep", d.canSleep);
@@ -135,7 +182,7 @@ SceneRigidBody readRigidBody(const Json& value, const std::string& path) {
   return out;
 }
 
-SceneJoint readJoint(const Json& value, const std::string& path) {
+SceneJoint readJoint(const Json& value, const std::string& path, const Bounds& bounds) {
   ObjectReader joint(value, path);
   SceneJoint out;
   joint.required("type");
@@ -144,6 +191,7 @@ SceneJoint readJoint(const Json& value, const std::string& path) {
   if (joint.has("body_b")) out.bodyB = joint.string("body_b");
   if (out.kind == SceneJoint::Kind::Hinge) {
     out.pivot = joint.vec3("pivot");
+    bounds.coordinates(out.pivot, joint.fieldPath("pivot"));
     out.axis = joint.vec3("axis");
     if (out.axis.norm() < 1e-9) fail(joint.fieldPath("axis"), "must not be zero");
     if (joint.has("limits")) {
@@ -172,7 +220,7 @@ SceneJoint readJoint(const Json& value, const std::string& path) {
   return out;
 }
 
-SceneMesh readMesh(const Json& value, const std::string& path) {
+SceneMesh readMesh(const Json& value, const std::string& path, const Bounds& bounds) {
   ObjectReader mesh(value, path);
   SceneMesh out;
   using Kind = SceneMesh::Kind;
@@ -190,10 +238,15 @@ SceneMesh readMesh(const Json& value, const std::string& path) {
         const std::string at = mesh.fieldPath("path");
         if (!points.is_array() || points.size() < 2 || points.size() > 10000)
           fail(at, "must be an array of 2 to 10000 [x, y, z] points");
-        for (size_t i = 0; i < points.size(); ++i) out.path.push_back(scene::readVec3(points[i], at + "/" + std::to_string(i)));
+        for (size_t i = 0; i < points.size(); ++i) {
+          out.path.push_back(scene::readVec3(points[i], at + "/" + std::to_string(i)));
+          bounds.coordinates(out.path.back(), at + "/" + std::to_string(i));
+        }
       } else {
         out.start = mesh.vec3("start");
+        bounds.coordinates(out.start, mesh.fieldPath("start"));
         out.end = mesh.vec3("end");
+        bounds.coordinates(out.end, mesh.fieldPath("end"));
       }
       out.nodes = count("nodes", 2);
       break;
@@ -201,12 +254,18 @@ SceneMesh readMesh(const Json& value, const std::string& path) {
       out.corner = mesh.vec3("corner");
       out.sideU = mesh.vec3("side_u");
       out.sideV = mesh.vec3("side_v");
+      bounds.coordinates(out.corner, mesh.fieldPath("corner"));
+      bounds.coordinates(out.corner + out.sideU, mesh.fieldPath("side_u") + " (corner + side_u)");
+      bounds.coordinates(out.corner + out.sideV, mesh.fieldPath("side_v") + " (corner + side_v)");
+      bounds.coordinates(out.corner + out.sideU + out.sideV, mesh.fieldPath("side_v") + " (corner + side_u + side_v)");
       out.columns = count("columns", 2);
       out.rows = count("rows", 2);
       break;
     case Kind::TetBox: {
       out.minCorner = mesh.vec3("min");
       out.maxCorner = mesh.vec3("max");
+      bounds.coordinates(out.minCorner, mesh.fieldPath("min"));
+      bounds.coordinates(out.maxCorner, mesh.fieldPath("max"));
       const Json& cells = mesh.required("cells");
       const std::string at = mesh.fieldPath("cells");
       if (!cells.is_array() || cells.size() != 3) fail(at, "must be [x, y, z] cell counts");
@@ -218,10 +277,13 @@ SceneMesh readMesh(const Json& value, const std::string& path) {
     }
     case Kind::TetCylinder:
       out.baseCentre = mesh.vec3("base_centre");
+      bounds.coordinates(out.baseCentre, mesh.fieldPath("base_centre"));
       mesh.required("radius");
       out.radius = mesh.positive("radius", 0);
+      bounds.size(out.radius, mesh.fieldPath("radius"));
       mesh.required("height");
       out.height = mesh.positive("height", 0);
+      bounds.size(out.height, mesh.fieldPath("height"));
       out.rings = count("rings", 1);
       out.sectors = count("sectors", 3);
       out.layers = count("layers", 1);
@@ -302,34 +364,39 @@ SceneFixedNodes readFixedNodes(const Json& value, const std::string& path) {
   return out;
 }
 
-SceneDeformable readDeformable(const Json& value, const std::string& path) {
+SceneDeformable readDeformable(const Json& value, const std::string& path, const Bounds& bounds) {
   ObjectReader deformable(value, path);
   SceneDeformable out;
   DeformableDesc& d = out.desc;
   d.name = deformable.string("name");
-  out.mesh = readMesh(deformable.required("mesh"), deformable.fieldPath("mesh"));
+  out.mesh = readMesh(deformable.required("mesh"), deformable.fieldPath("mesh"), bounds);
   if (deformable.has("mass") == deformable.has("density"))
     fail(path, "give either 'mass' (kg, in all) or 'density' (kg/m^3; kg/m^2 for surfaces, kg/m for ropes)");
-  if (deformable.has("mass")) out.mass = deformable.positive("mass", 0);
+  if (deformable.has("mass")) {
+    out.mass = deformable.positive("mass", 0);
+    bounds.mass(*out.mass, deformable.fieldPath("mass"));
+  }
   if (deformable.has("density")) out.density = deformable.positive("density", 0);
   readParadigm(deformable, out);
   readRowSettings(deformable, out);
   d.collision.enabled = deformable.boolean("collision", d.collision.enabled);
   d.collision.selfCollision = deformable.boolean("self_collision", d.collision.selfCollision);
   d.collision.thickness = deformable.nonNegative("thickness", d.collision.thickness);
+  if (d.collision.thickness > bounds.limits.maxSize) bounds.size(d.collision.thickness, deformable.fieldPath("thickness"));
   d.collision.friction = deformable.nonNegative("friction", d.collision.friction);
   d.collision.group = deformable.bits("collision_group", d.collision.group);
   d.collision.mask = deformable.bits("collision_mask", d.collision.mask);
   d.damping = deformable.nonNegative("damping", d.damping);
   d.rowSolver = deformable.choice("row_solver", scene::kRowSolverNames, d.rowSolver);
   out.initialVelocity = deformable.vec3("initial_velocity", Vec3::Zero());
+  bounds.speed(out.initialVelocity, deformable.fieldPath("initial_velocity"));
   forEachElement(deformable, "fixed",
                  [&](const Json& element, const std::string& at) { out.fixed.push_back(readFixedNodes(element, at)); });
   deformable.finish();
   return out;
 }
 
-SceneAnchor readAnchor(const Json& value, const std::string& path) {
+SceneAnchor readAnchor(const Json& value, const std::string& path, const Bounds& bounds) {
   ObjectReader anchor(value, path);
   SceneAnchor out;
   out.deformable = anchor.string("deformable");
@@ -337,7 +404,10 @@ SceneAnchor readAnchor(const Json& value, const std::string& path) {
   const int ways = int(anchor.has("node")) + int(anchor.has("nearest")) + int(anchor.has("face"));
   if (ways != 1) fail(path, "give exactly one of 'node' (an index), 'nearest' (a point) or 'face' (a triangle index)");
   if (anchor.has("node")) out.node = anchor.integer("node", 0, 0, std::numeric_limits<int>::max());
-  if (anchor.has("nearest")) out.nearest = anchor.vec3("nearest");
+  if (anchor.has("nearest")) {
+    out.nearest = anchor.vec3("nearest");
+    bounds.coordinates(*out.nearest, anchor.fieldPath("nearest"));
+  }
   if (anchor.has("face")) {
     out.face = anchor.integer("face", 0, 0, std::numeric_limits<int>::max());
     if (anchor.has("barycentric")) {
@@ -355,7 +425,10 @@ SceneAnchor readAnchor(const Json& value, const std::string& path) {
   } else if (anchor.has("barycentric")) {
     fail(anchor.fieldPath("barycentric"), "only goes with 'face'");
   }
-  if (anchor.has("local_point")) out.localPoint = anchor.vec3("local_point");
+  if (anchor.has("local_point")) {
+    out.localPoint = anchor.vec3("local_point");
+    bounds.coordinates(*out.localPoint, anchor.fieldPath("local_point"));
+  }
   out.maxForce = anchor.positive("max_force", out.maxForce);
   anchor.finish();
   return out;
@@ -428,7 +501,8 @@ Json parseRefusingDuplicates(std::string_view text) {
 
 }  // namespace
 
-Result<Scene> parseScene(std::string_view text, const std::string& fileName, const std::string& directory) {
+Result<Scene> parseScene(std::string_view text, const std::string& fileName, const std::string& directory,
+                         const Limits& limits) {
   try {
     const Json json = parseRefusingDuplicates(text);
     ObjectReader root(json, "");
@@ -442,17 +516,30 @@ Result<Scene> parseScene(std::string_view text, const std::string& fileName, con
                           std::to_string(format));
     scene.name = root.string("name", "");
     scene.description = root.string("description", "");
-    scene.timeStep = root.numberIn("time_step", scene.timeStep, 0.0, 1.0, true);
+    scene.timeStep = root.numberIn("time_step", scene.timeStep, limits.minTimeStep, 1.0);
     scene.duration = root.positive("duration", scene.duration);
+    if (const double steps = std::round(scene.duration / scene.timeStep); steps > static_cast<double>(limits.maxSteps))
+      fail(root.has("duration") ? "/duration" : "/time_step",
+           scene::formatValue(scene.duration) + " s at a time step of " + scene::formatValue(scene.timeStep) + " s is " +
+               scene::formatValue(steps) + " steps, more than a run's " + std::to_string(limits.maxSteps) +
+               " (Limits::maxSteps)");
     scene.settings.gravity = root.vec3("gravity", scene.settings.gravity);
+    if (scene.settings.gravity.stableNorm() > limits.maxGravity)
+      fail("/gravity", scene::formatValue(scene.settings.gravity.stableNorm()) + " m/s^2 is more than " +
+                           scene::formatValue(limits.maxGravity) + " m/s^2 (Limits::maxGravity)");
     scene.settings.divergenceSpeed = root.positive("divergence_speed", scene.settings.divergenceSpeed);
+    const Bounds bounds{limits, scene.settings.divergenceSpeed};
     readSolver(root, scene);
-    forEachElement(root, "rigid_bodies",
-                   [&](const Json& v, const std::string& at) { scene.rigidBodies.push_back(readRigidBody(v, at)); });
-    forEachElement(root, "joints", [&](const Json& v, const std::string& at) { scene.joints.push_back(readJoint(v, at)); });
-    forEachElement(root, "deformables",
-                   [&](const Json& v, const std::string& at) { scene.deformables.push_back(readDeformable(v, at)); });
-    forEachElement(root, "anchors", [&](const Json& v, const std::string& at) { scene.anchors.push_back(readAnchor(v, at)); });
+    forEachElement(root, "rigid_bodies", [&](const Json& v, const std::string& at) {
+      scene.rigidBodies.push_back(readRigidBody(v, at, bounds));
+    });
+    forEachElement(root, "joints",
+                   [&](const Json& v, const std::string& at) { scene.joints.push_back(readJoint(v, at, bounds)); });
+    forEachElement(root, "deformables", [&](const Json& v, const std::string& at) {
+      scene.deformables.push_back(readDeformable(v, at, bounds));
+    });
+    forEachElement(root, "anchors",
+                   [&](const Json& v, const std::string& at) { scene.anchors.push_back(readAnchor(v, at, bounds)); });
     root.finish();
     checkNames(scene);
     return scene;
@@ -461,16 +548,11 @@ Result<Scene> parseScene(std::string_view text, const std::string& fileName, con
   }
 }
 
-Result<Scene> loadScene(const std::string& path) {
-  std::error_code error;
-  if (std::filesystem::is_directory(path, error)) return Error{path + ": is a folder, not a scene file"};
-  std::ifstream file(path, std::ios::binary);
-  if (!file) return Error{path + ": cannot open the scene file"};
-  std::stringstream text;
-  text << file.rdbuf();
-  if (file.bad()) return Error{path + ": cannot read the scene file"};
+Result<Scene> loadScene(const std::string& path, const Limits& limits) {
+  Result<std::string> text = readInputFile(path, limits.maxSceneFileBytes, "scene file", "Limits::maxSceneFileBytes");
+  if (!text) return Error{text.message()};
   const std::string directory = std::filesystem::path(path).parent_path().string();
-  return parseScene(text.str(), path, directory.empty() ? "." : directory);
+  return parseScene(*text, path, directory.empty() ? "." : directory, limits);
 }
 
 }  // namespace tandem
