@@ -202,6 +202,13 @@ struct FileCloser {
 
 }  // namespace
 
+Status createReportJson(const std::string& path) {
+  std::FILE* file = std::fopen(path.c_str(), "w");
+  if (!file) return Error{"report-json: cannot write '" + path + "': " + std::strerror(errno)};
+  std::fclose(file);
+  return {};
+}
+
 Status writeReportJson(const std::string& path, const RunDescription& run, const RunLog& log, const World& world) {
   std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "w"));
   if (!file) return Error{"report-json: cannot write '" + path + "': " + std::strerror(errno)};

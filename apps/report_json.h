@@ -22,6 +22,9 @@ struct RunDescription {
   double wallSeconds = 0.0;
 };
 
+// Creates (truncates) the file, so that a path that cannot be written is named before the run.
+Status createReportJson(const std::string& path);
+
 // Writes the report (every step's series too when the log kept them); a file that cannot be
 // written is an error naming it.
 Status writeReportJson(const std::string& path, const RunDescription& run, const RunLog& log, const World& world);

@@ -91,6 +91,12 @@ int run(const RunOptions& options) {
                  static_cast<long long>(tandem::cli::kMaxReportJsonSteps), steps);
     return 2;
   }
+  if (!options.reportJson.empty()) {
+    if (tandem::Status s = tandem::cli::createReportJson(options.reportJson); !s) {
+      std::fprintf(stderr, "tandem: %s\n", s.message().c_str());
+      return 2;
+    }
+  }
   std::optional<tandem::StepRecorder> recorder;
   if (!options.record.empty()) {
     const tandem::RecordFormat format = options.recordFormat == "csv"   ? tandem::RecordFormat::Csv
@@ -122,6 +128,7 @@ int run(const RunOptions& options) {
     const auto before = std::chrono::steady_clock::now();
     if (tandem::Status s = world.step(h); !s) {
       std::fprintf(stderr, "\ntandem: %s\n", s.message().c_str());
+      if (recorder) (void)recorder->close();  // what was recorded up to the failed step, for a look at it
       return 1;
     }
     if (recorder) {
