@@ -6,7 +6,7 @@ Usage: check_figures.py SOURCE_DIR TANDEM WORK_DIR
 Runs `scripts/figures.sh WORK_DIR/images --seconds 0.3 --data WORK_DIR/data` and checks, against
 the run reports it kept: each PNG exists and is a PNG of a sensible size; figures.json (what was
 plotted) has as many points as the runs had steps and iterations, every one finite; the fitted
-lines and ns per row-iteration are finite and consistent with the points; the stage shares sum
+lines (through the origin) and ns per row-iteration are finite and consistent with the points; the stage shares sum
 to one and equal the run reports'; the paper's jelly shares are 43/32/24 %.
 """
 import json
@@ -75,11 +75,12 @@ def main(source_dir, tandem, work_dir):
         assert fig["solve_ms"] == reports[scene]["steps"]["stage_ms"]["interleaved_solve"]
         assert finite(fig["rows"]) and finite(fig["solve_ms"]) and max(fig["rows"]) > 0
         fit = fig["fit"]
-        assert finite([fit["intercept_ms"], fit["slope_ms_per_row"], fit["ns_per_row_iteration"]]), fit
+        assert finite([fit["slope_ms_per_row"], fit["ns_per_row_iteration"], fit["median_ns_per_row_iteration"]]), fit
+        assert fit["slope_ms_per_row"] > 0 and fit["median_ns_per_row_iteration"] > 0, fit
         assert math.isclose(fit["ns_per_row_iteration"], 1e6 * fit["slope_ms_per_row"] / fit["iterations_per_step"])
-        # Least squares: the residuals sum to zero (the line passes through the mean point).
-        residual = sum(y - fit["intercept_ms"] - fit["slope_ms_per_row"] * x for x, y in zip(fig["rows"], fig["solve_ms"]))
-        assert abs(residual) <= 1e-6 * max(1.0, sum(fig["solve_ms"])), residual
+        # Least squares through the origin: the residuals are orthogonal to the rows.
+        residual = sum(x * (y - fit["slope_ms_per_row"] * x) for x, y in zip(fig["rows"], fig["solve_ms"]))
+        assert abs(residual) <= 1e-9 * sum(x * y for x, y in zip(fig["rows"], fig["solve_ms"])), residual
 
     # Stages: Tandem's shares from the reports, the paper's as its text gives them.
     for scene, shares in data["stages"].items():
