@@ -223,7 +223,8 @@ Status writeReportJson(const std::string& path, const RunDescription& run, const
   report.field("run", Json{{"steps", log.steps()},
                            {"simulated_seconds", simulated},
                            {"wall_seconds", run.wallSeconds},
-                           {"real_time_factor", run.wallSeconds > 0 ? simulated / run.wallSeconds : 0.0}},
+                           {"real_time_factor", run.wallSeconds > 0 ? simulated / run.wallSeconds : 0.0},
+                           {"error", run.error.empty() ? Json(nullptr) : Json(run.error)}},
                true);
   report.field("step_ms", spreadJson(log.wallMsSpread()), true);
   report.field("stages", stagesJson(log), true);

@@ -20,6 +20,7 @@ struct RunDescription {
   std::string description;  // the scene's one line
   double timeStep = 0.0;    // h, s
   double wallSeconds = 0.0;
+  std::string error;        // why the run stopped early (a step failed), or empty
 };
 
 // Creates (truncates) the file, so that a path that cannot be written is named before the run.

@@ -128,7 +128,14 @@ int run(const RunOptions& options) {
     const auto before = std::chrono::steady_clock::now();
     if (tandem::Status s = world.step(h); !s) {
       std::fprintf(stderr, "\ntandem: %s\n", s.message().c_str());
-      if (recorder) (void)recorder->close();  // what was recorded up to the failed step, for a look at it
+      // What was recorded and reported up to the failed step, for a look at it.
+      if (recorder) (void)recorder->close();
+      if (!options.reportJson.empty()) {
+        const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const tandem::cli::RunDescription description{options.scene, scene->name, scene->description, h, wall,
+                                                      s.message()};
+        (void)tandem::cli::writeReportJson(options.reportJson, description, log, world);
+      }
       return 1;
     }
     if (recorder) {
@@ -179,7 +186,7 @@ int run(const RunOptions& options) {
   }
   if (options.report) printReport(world.lastReport(), log);
   if (!options.reportJson.empty()) {
-    const tandem::cli::RunDescription description{options.scene, scene->name, scene->description, h, wall};
+    const tandem::cli::RunDescription description{options.scene, scene->name, scene->description, h, wall, ""};
     if (tandem::Status s = tandem::cli::writeReportJson(options.reportJson, description, log, world); !s) {
       std::fprintf(stderr, "tandem: %s\n", s.message().c_str());
       return 1;

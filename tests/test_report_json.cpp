@@ -214,6 +214,31 @@ TEST_F(ReportJson, TheSummaryFollowsFromTheSteps) {
   }
 }
 
+// A run that diverges (a falling box past a divergence speed of 1 m/s, after about 0.1 s) still
+// writes the report and the record of the steps before, and says why it stopped.
+TEST(ReportJsonCommand, ARunThatFailsWritesTheStepsBeforeAndWhy) {
+  const fs::path scene = tempDir() / "diverging.json";
+  std::ofstream(scene) << R"({ "format": 1, "time_step": 0.02, "divergence_speed": 1,
+    "rigid_bodies": [ { "name": "falling box", "shape": { "type": "box", "half_extents": [0.1, 0.1, 0.1] },
+                        "position": [0, 5, 0] } ] })";
+  const std::string reportPath = (tempDir() / "diverging_report.json").string();
+  const std::string recordPath = (tempDir() / "diverging_record.npz").string();
+  std::string output;
+  const int status = runCommand("run " + scene.string() + " --steps 50 --quiet --report-json " + reportPath +
+                                    " --record " + recordPath,
+                                output);
+  EXPECT_NE(status, 0);
+  std::ifstream file(reportPath);
+  const Json failed = Json::parse(file);
+  const std::string error = failed["run"]["error"];
+  EXPECT_NE(error.find("falling box"), std::string::npos) << error;
+  EXPECT_NE(output.find(error), std::string::npos) << output;  // the message the command printed
+  // Free fall reaches 1 m/s after 0.102 s: the sixth step fails, five are reported.
+  EXPECT_EQ(failed["run"]["steps"].get<int>(), 5);
+  EXPECT_EQ(failed["steps"]["time"].size(), 5u);
+  EXPECT_GT(fs::file_size(recordPath), 0u);
+}
+
 TEST(ReportJsonCommand, AnUnwritableFileIsNamedBeforeTheRun) {
   std::string output;
   const int status = runCommand("run hanging_rope --steps 5 --report-json /no/such/folder/report.json", output);
