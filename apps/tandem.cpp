@@ -7,6 +7,8 @@
 #include <tandem/world.h>
 
 #include "exit_codes.h"
+#include "report_json.h"
+#include "run_log.h"
 #include "scene_loading.h"
 #ifdef TANDEM_HAS_RENDER
 #include "render_command.h"
@@ -33,6 +35,7 @@ using namespace tandem::cli;  // exit codes
 using tandem::cli::buildInto;
 using tandem::cli::nodeCount;
 using tandem::cli::overrideSolver;
+using tandem::cli::RunLog;
 using tandem::cli::SceneInfo;
 
 constexpr long kMaxSteps = 10'000'000;  // 55 hours of a 20 ms step; each is timed and kept
@@ -40,7 +43,9 @@ constexpr long kMaxSteps = 10'000'000;  // 55 hours of a 20 ms step; each is tim
 struct RunOptions {
   std::string scene;
   std::string record;
+  std::string recordFormat;  // "csv", "npz", or empty: by the file's extension
   bool recordNodes = false;
+  std::string reportJson;
   long steps = 0;
   double seconds = 0.0;
   double timeStep = 0.0;
@@ -50,24 +55,17 @@ struct RunOptions {
   bool quiet = false;
 };
 
-double percentile(std::vector<double> values, double fraction) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  const size_t index = std::min(values.size() - 1, static_cast<size_t>(fraction * (values.size() - 1) + 0.5));
-  return values[index];
-}
-
-void printReport(const StepReport& report, const std::vector<double>& stageTotals, long steps,
-                 const std::array<int, static_cast<size_t>(tandem::RowType::Count)>& maxRows) {
+void printReport(const StepReport& report, const RunLog& log) {
   std::printf("\nTime per stage (mean per step):\n");
   double total = 0.0;
-  for (double seconds : stageTotals) total += seconds;
-  for (size_t s = 0; s < stageTotals.size(); ++s)
+  for (double seconds : log.stageTotals()) total += seconds;
+  const double steps = static_cast<double>(log.steps());
+  for (size_t s = 0; s < log.stageTotals().size(); ++s)
     std::printf("  %-20s %8.3f ms  %5.1f %%\n", std::string(tandem::kStageNames[s]).c_str(),
-                1e3 * stageTotals[s] / steps, total > 0 ? 100.0 * stageTotals[s] / total : 0.0);
+                1e3 * log.stageTotals()[s] / steps, total > 0 ? 100.0 * log.stageTotals()[s] / total : 0.0);
   std::printf("Rows by type (last step / maximum):\n");
   for (size_t t = 0; t < report.rowCounts.size(); ++t)
-    std::printf("  %-20s %8d / %d\n", std::string(tandem::kRowTypeNames[t]).c_str(), report.rowCounts[t], maxRows[t]);
+    std::printf("  %-20s %8d / %d\n", std::string(tandem::kRowTypeNames[t]).c_str(), report.rowCounts[t], log.maxRows()[t]);
   std::printf("  %-20s %8d\n", "total", report.totalRows());
   std::printf("Bullet: %d contact manifolds, %d joints\n", report.bulletContactManifolds, report.bulletJoints);
   std::printf("Impact zones, last step: %d, holding %d nodes\n", report.impactZones, report.impactZoneNodes);
@@ -90,9 +88,24 @@ int run(const RunOptions& options) {
     return kExitUsage;
   }
   const long steps = options.steps > 0 ? options.steps : std::max(1L, static_cast<long>(wanted));
+  if (!options.reportJson.empty() && steps > tandem::cli::kMaxReportJsonSteps) {
+    std::fprintf(stderr, "tandem: --report-json keeps every step's report; a run with it takes at most %lld steps, "
+                 "this one would take %ld (use a larger --dt or fewer --seconds)\n",
+                 static_cast<long long>(tandem::cli::kMaxReportJsonSteps), steps);
+    return kExitUsage;
+  }
+  if (!options.reportJson.empty()) {
+    if (tandem::Status s = tandem::cli::createReportJson(options.reportJson); !s) {
+      std::fprintf(stderr, "tandem: %s\n", s.message().c_str());
+      return kExitOutputFailed;
+    }
+  }
   std::optional<tandem::StepRecorder> recorder;
   if (!options.record.empty()) {
-    tandem::Result<tandem::StepRecorder> opened = tandem::StepRecorder::open(options.record, options.recordNodes);
+    const tandem::RecordFormat format = options.recordFormat == "csv"   ? tandem::RecordFormat::Csv
+                                        : options.recordFormat == "npz" ? tandem::RecordFormat::Npz
+                                                                        : tandem::recordFormatOf(options.record);
+    tandem::Result<tandem::StepRecorder> opened = tandem::StepRecorder::open(options.record, options.recordNodes, format);
     tandem::Status written = opened ? opened->write(world) : opened.status();
     if (!written) {
       std::fprintf(stderr, "tandem: %s\n", written.message().c_str());
@@ -108,11 +121,8 @@ int run(const RunOptions& options) {
                 nodes, world.rigidBodyCount(), h, world.settings().solver.iterations,
                 world.settings().solver.substeps);
 
-  std::vector<double> stepMs;
-  stepMs.reserve(steps);
-  std::vector<double> stageTotals(static_cast<size_t>(tandem::Stage::Count), 0.0);
-  std::array<int, static_cast<size_t>(tandem::RowType::Count)> maxRows{};
-  int maxTotalRows = 0;
+  const tandem::SolverSettings& solver = world.settings().solver;
+  RunLog log(!options.reportJson.empty(), steps, solver.iterations * solver.substeps);
   const bool progress = !options.quiet && isatty(fileno(stdout)) && steps >= 200;
   constexpr long kViolationsShown = 5;
   long violatedSteps = 0;  // violations reported, one per deformable, kind and step
@@ -121,6 +131,14 @@ int run(const RunOptions& options) {
     const auto before = std::chrono::steady_clock::now();
     if (tandem::Status s = world.step(h); !s) {
       std::fprintf(stderr, "\ntandem: %s\n", s.message().c_str());
+      // What was recorded and reported up to the failed step, for a look at it.
+      if (recorder) (void)recorder->close();
+      if (!options.reportJson.empty()) {
+        const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const tandem::cli::RunDescription description{options.scene, scene->name, scene->description, h, wall,
+                                                      s.message()};
+        (void)tandem::cli::writeReportJson(options.reportJson, description, log, world);
+      }
       return kExitDiverged;
     }
     if (recorder) {
@@ -129,16 +147,14 @@ int run(const RunOptions& options) {
         return kExitOutputFailed;
       }
     }
-    stepMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - before).count());
+    const double stepMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - before).count();
     const StepReport& report = world.lastReport();
+    log.add(report, stepMs, world.time());
     for (const tandem::RowViolation& violation : report.violations) {
       if (violatedSteps++ < kViolationsShown)
         std::fprintf(stderr, "%standem: warning: step %ld (t = %.3f s): %s\n", progress ? "\n" : "", i + 1,
                      world.time(), violation.message.c_str());
     }
-    for (size_t s = 0; s < stageTotals.size(); ++s) stageTotals[s] += report.stageSeconds[s];
-    for (size_t t = 0; t < maxRows.size(); ++t) maxRows[t] = std::max(maxRows[t], report.rowCounts[t]);
-    maxTotalRows = std::max(maxTotalRows, report.totalRows());
     if (progress && (i % 50 == 0 || i + 1 == steps)) {
       std::printf("\r  [%-40s] %ld/%ld steps", std::string(40 * (i + 1) / steps, '#').c_str(), i + 1, steps);
       std::fflush(stdout);
@@ -153,13 +169,11 @@ int run(const RunOptions& options) {
     }
   }
 
-  double sum = 0.0;
-  for (double ms : stepMs) sum += ms;
-  const double mean = steps ? sum / steps : 0.0;
+  const tandem::cli::Spread stepMs = log.wallMsSpread();
   std::printf("Simulated %.2f s in %ld steps (up to %d rows) in %.3f s of wall time: %.1fx real time\n",
-              steps * h, steps, maxTotalRows, wall, wall > 0 ? steps * h / wall : 0.0);
-  std::printf("ms per step: mean %.3f, median %.3f, p95 %.3f, max %.3f\n", mean, percentile(stepMs, 0.5),
-              percentile(stepMs, 0.95), percentile(stepMs, 1.0));
+              steps * h, steps, log.maxTotalRows(), wall, wall > 0 ? steps * h / wall : 0.0);
+  std::printf("ms per step: mean %.3f, median %.3f, p95 %.3f, max %.3f\n", stepMs.mean, stepMs.median, stepMs.p95,
+              stepMs.max);
   if (violatedSteps > 0)
     std::fprintf(stderr, "tandem: warning: %ld violated rows over the run (anchors more than %g m apart, inextensible "
                  "edges stretched more than %g %%); the first %ld are shown above\n", violatedSteps,
@@ -173,7 +187,14 @@ int run(const RunOptions& options) {
                   p.z(), world.rigidLinearVelocity(id).norm());
     }
   }
-  if (options.report) printReport(world.lastReport(), stageTotals, steps, maxRows);
+  if (options.report) printReport(world.lastReport(), log);
+  if (!options.reportJson.empty()) {
+    const tandem::cli::RunDescription description{options.scene, scene->name, scene->description, h, wall, ""};
+    if (tandem::Status s = tandem::cli::writeReportJson(options.reportJson, description, log, world); !s) {
+      std::fprintf(stderr, "tandem: %s\n", s.message().c_str());
+      return kExitOutputFailed;
+    }
+  }
   return violatedSteps > 0 ? kExitViolated : kExitSuccess;
 }
 
@@ -242,9 +263,14 @@ int main(int argc, char** argv) {
   runCommand->add_option("--substeps", options.substeps, "Solver substeps n per step")->check(CLI::Range(1, 1000));
   runCommand->add_flag("--report", options.report, "Print stage times, row counts and convergence");
   runCommand->add_flag("--quiet", options.quiet, "Print only the summary lines");
-  auto* recordOption =
-      runCommand->add_option("--record", options.record, "Write every step's rigid poses and velocities to this CSV file");
+  runCommand->add_option("--report-json", options.reportJson,
+                         "Write the whole report (settings, stages, rows, convergence, every step) to this JSON file");
+  auto* recordOption = runCommand->add_option(
+      "--record", options.record, "Write every step's rigid poses and velocities to this file (CSV, or NumPy .npz)");
   runCommand->add_flag("--record-nodes", options.recordNodes, "Also record every deformable node")->needs(recordOption);
+  runCommand->add_option("--record-format", options.recordFormat, "csv or npz (default: npz for a .npz file, else csv)")
+      ->check(CLI::IsMember({"csv", "npz"}))
+      ->needs(recordOption);
 
   std::vector<std::string> validateFiles;
   CLI::App* validateCommand = app.add_subcommand("validate", "Check scene files: load and build them without running");

@@ -10,7 +10,9 @@ packages=(build-essential cmake ninja-build pkg-config
           # rendering: `tandem view` (GLFW, Dear ImGui), `tandem render` (EGL with no display,
           # Mesa's software rasteriser, ffmpeg for mp4); Xvfb and xdotool for the viewer's tests
           libopengl-dev libgl-dev libegl-dev libglfw3-dev libimgui-dev libstb-dev libegl-mesa0 libgl1-mesa-dri
-          ffmpeg xvfb xauth xdotool)
+          ffmpeg xvfb xauth xdotool
+          # the paper's figures (scripts/figures.sh) and the tests that read .npz records with NumPy
+          python3 python3-numpy python3-matplotlib)
 
 missing=()
 for package in "${packages[@]}"; do

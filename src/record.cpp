@@ -1,64 +1,42 @@
 #include <tandem/record.h>
 
-#include <cerrno>
-#include <cstring>
+#include "record_writer.h"
+
+#include <algorithm>
+#include <cctype>
 
 namespace tandem {
 
+RecordFormat recordFormatOf(const std::string& path) {
+  std::string extension = path.size() >= 4 ? path.substr(path.size() - 4) : std::string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension == ".npz" ? RecordFormat::Npz : RecordFormat::Csv;
+}
+
 Result<StepRecorder> StepRecorder::open(const std::string& path, bool nodes) {
-  std::FILE* file = std::fopen(path.c_str(), "w");
-  if (!file) return Error{"record: cannot write '" + path + "'"};
-  StepRecorder recorder(file, path, nodes);
-  std::fputs("step,time,kind,name,index,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n", file);
-  return recorder;
+  return open(path, nodes, recordFormatOf(path));
 }
 
-namespace {
-
-// A name with a comma, quote or line break is quoted, quotes doubled (RFC 4180).
-std::string csvField(const std::string& text) {
-  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
-  std::string quoted = "\"";
-  for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return quoted + "\"";
+Result<StepRecorder> StepRecorder::open(const std::string& path, bool nodes, RecordFormat format) {
+  Result<std::unique_ptr<Writer>> writer = format == RecordFormat::Npz ? openNpzRecord(path, nodes) : openCsvRecord(path, nodes);
+  if (!writer) return Error{writer.message()};
+  return StepRecorder(std::move(writer).value());
 }
 
-}  // namespace
+StepRecorder::StepRecorder(std::unique_ptr<Writer> writer) : m_writer(std::move(writer)) {}
+StepRecorder::StepRecorder(StepRecorder&&) noexcept = default;
+StepRecorder& StepRecorder::operator=(StepRecorder&&) noexcept = default;
+StepRecorder::~StepRecorder() = default;
 
 Status StepRecorder::write(const World& world) {
-  std::FILE* f = m_file.get();
-  const long long step = world.stepCount();
-  const double time = world.time();
-  for (int b = 0; b < world.rigidBodyCount(); ++b) {
-    const RigidBodyId id{b};
-    const Vec3 x = world.rigidPosition(id), v = world.rigidLinearVelocity(id), w = world.rigidAngularVelocity(id);
-    const Quat q = world.rigidOrientation(id);
-    std::fprintf(f, "%lld,%.17g,rigid,%s,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
-                 step, time, csvField(world.rigidName(id)).c_str(), b, x.x(), x.y(), x.z(), q.w(), q.x(), q.y(), q.z(),
-                 v.x(), v.y(), v.z(), w.x(), w.y(), w.z());
-  }
-  if (m_nodes) {
-    for (int d = 0; d < world.deformableCount(); ++d) {
-      const DeformableId id{d};
-      const std::string name = csvField(world.deformableName(id));
-      const std::span<const Vec3> x = world.nodePositions(id), v = world.nodeVelocities(id);
-      for (size_t n = 0; n < x.size(); ++n)
-        std::fprintf(f, "%lld,%.17g,node,%s,%zu,%.17g,%.17g,%.17g,,,,,%.17g,%.17g,%.17g,,,\n", step, time, name.c_str(), n,
-                     x[n].x(), x[n].y(), x[n].z(), v[n].x(), v[n].y(), v[n].z());
-    }
-  }
-  if (std::ferror(f)) return Error{"record: writing '" + m_path + "' failed"};
-  return {};
+  if (!m_writer) return Error{"record: writing to a recorder that was moved from"};
+  return m_writer->write(world);
 }
 
 Status StepRecorder::close() {
-  std::FILE* f = m_file.release();
-  if (!f) return Error{"record: '" + m_path + "' is already closed"};
-  const bool written = std::fflush(f) == 0 && !std::ferror(f);
-  const int error = errno;
-  if (std::fclose(f) != 0 || !written)
-    return Error{"record: writing '" + m_path + "' failed: " + std::strerror(written ? errno : error)};
-  return {};
+  if (!m_writer) return Error{"record: closing a recorder that was moved from"};
+  return m_writer->close();
 }
 
 }  // namespace tandem
