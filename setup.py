@@ -50,7 +50,6 @@ class CMakeBuild(build_ext):
             "-DTANDEM_BUILD_TESTS=OFF",
             "-DTANDEM_BUILD_BENCHMARKS=OFF",
             "-DTANDEM_BUILD_RENDER=OFF",
-            "-DTANDEM_WARNINGS_AS_ERRORS=OFF",
         ]
         if shutil.which("ninja"):
             configure += ["-G", "Ninja"]
