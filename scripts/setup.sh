@@ -11,8 +11,10 @@ packages=(build-essential cmake ninja-build pkg-config
           # Mesa's software rasteriser, ffmpeg for mp4); Xvfb and xdotool for the viewer's tests
           libopengl-dev libgl-dev libegl-dev libglfw3-dev libimgui-dev libstb-dev libegl-mesa0 libgl1-mesa-dri
           ffmpeg xvfb xauth xdotool
-          # the paper's figures (scripts/figures.sh) and the tests that read .npz records with NumPy
-          python3 python3-numpy python3-matplotlib)
+          # the paper's figures (scripts/figures.sh), the tests that read .npz records with NumPy,
+          # the Python module (`import tandem`), its tests and examples, and `pip install .`
+          python3 python3-dev pybind11-dev python3-numpy python3-pytest python3-matplotlib
+          python3-pip python3-setuptools python3-wheel)
 
 missing=()
 for package in "${packages[@]}"; do
@@ -27,5 +29,6 @@ fi
 
 build_dir=${1:-build}
 
-cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release -DTANDEM_WARNINGS_AS_ERRORS=ON >/dev/null
+cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release -DTANDEM_WARNINGS_AS_ERRORS=ON \
+      -DPython3_EXECUTABLE=/usr/bin/python3 >/dev/null
 cmake --build "$build_dir" --parallel "$(nproc)"
