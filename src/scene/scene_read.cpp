@@ -129,6 +129,7 @@ SceneRigidBody readRigidBody(const Json& value, const std::string& path) {
   d.friction = body.nonNegative("friction", d.friction);
   d.restitution = body.numberIn("restitution", d.restitution, 0.0, 1.0);
   d.canSleep = body.boolean("can_sleep", d.canSleep);
+  if (body.has("colour")) out.colour = body.colour("colour");
   body.finish();
   return out;
 }
@@ -300,6 +301,7 @@ SceneDeformable readDeformable(const Json& value, const std::string& path) {
   out.initialVelocity = deformable.vec3("initial_velocity", Vec3::Zero());
   forEachElement(deformable, "fixed",
                  [&](const Json& element, const std::string& at) { out.fixed.push_back(readFixedNodes(element, at)); });
+  if (deformable.has("colour")) out.colour = deformable.colour("colour");
   deformable.finish();
   return out;
 }
