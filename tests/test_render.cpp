@@ -149,7 +149,7 @@ TEST(Renderer, TheShadowDarkensTheGroundUnderABody) {
   ASSERT_TRUE(target.ok()) << target.message();
   Result<std::unique_ptr<render::Renderer>> renderer = render::Renderer::create();
   ASSERT_TRUE(renderer.ok()) << renderer.message();
-  const Camera camera = Camera::lookAt({0.3, 3.0, 2.0}, {0, 0, 0});
+  const Camera camera = Camera::lookAt({-1.0, 3.0, -1.4}, {0, 0, 0});  // from the shadow's side
   auto draw = [&](bool shadows) {
     render::RenderOptions options;
     options.shadows = shadows;

@@ -9,7 +9,7 @@ script=$(mktemp)
 trap 'rm -f "$script"' EXIT
 cat > "$script" <<INNER
 set -euo pipefail
-"$tandem" view "$scene" --width 960 --height 540 --camera $camera --max-seconds 6 &
+"$tandem" view "$scene" --width 960 --height 540 --camera $camera --max-seconds 9 &
 viewer=\$!
 window=\$(xdotool search --sync --name Tandem | head -1)
 sleep 1
