@@ -5,6 +5,7 @@
 #include "exit_codes.h"
 
 #include "scene_loading.h"
+#include "scene_looks.h"
 #include "viewer.h"
 
 #include "render/camera.h"
@@ -36,6 +37,8 @@ struct RenderCommandOptions {
   std::vector<double> camera;  // eye x y z, target x y z
   bool wireframe = false;
   bool contacts = false;
+  bool follow = false;
+  bool noShadows = false;
   int iterations = 0;
 };
 
@@ -110,6 +113,8 @@ int render(const RenderCommandOptions& options) {
   render::RenderOptions drawing;
   drawing.wireframe = options.wireframe;
   drawing.contacts = options.contacts;
+  drawing.shadows = !options.noShadows;
+  applySceneColours(*scene, drawing);
   const bool progress = isatty(fileno(stderr)) && options.frames > 1;
   const auto wallStart = std::chrono::steady_clock::now();
   for (int frame = 0; frame < options.frames; ++frame) {
@@ -117,6 +122,7 @@ int render(const RenderCommandOptions& options) {
       std::fprintf(stderr, "\ntandem: %s\n", s.message().c_str());
       return kExitDiverged;
     }
+    if (options.follow) render::follow(camera, world, double(options.width) / options.height);
     (*target)->bind();
     (*renderer)->draw(world, camera, options.width, options.height, drawing);
     const std::vector<uint8_t> pixels = (*target)->readPixels();
@@ -173,6 +179,9 @@ std::function<int()> addRenderCommands(CLI::App& app) {
       ->expected(6);
   renderCommand->add_flag("--wireframe", renderOptions->wireframe, "Draw the edges too");
   renderCommand->add_flag("--contacts", renderOptions->contacts, "Draw contact points and force arrows");
+  renderCommand->add_flag("--follow", renderOptions->follow,
+                          "Turn the camera to keep what moves in view, backing off when it would not fit");
+  renderCommand->add_flag("--no-shadows", renderOptions->noShadows, "Draw without the key light's shadows");
   renderCommand->add_option("--iterations", renderOptions->iterations, "Solver iterations K")
       ->check(CLI::Range(1, 1000));
 

@@ -23,7 +23,10 @@ std::optional<SceneInfo> buildInto(World& world, const std::string& scene) {
       return std::nullopt;
     }
     const std::string name = loaded->name.empty() ? std::filesystem::path(scene).stem().string() : loaded->name;
-    return SceneInfo{name, loaded->description, loaded->timeStep, loaded->duration};
+    SceneInfo info{name, loaded->description, loaded->timeStep, loaded->duration, {}, {}};
+    for (const SceneRigidBody& body : loaded->rigidBodies) info.rigidColours.push_back(body.colour);
+    for (const SceneDeformable& deformable : loaded->deformables) info.deformableColours.push_back(deformable.colour);
+    return info;
   }
   const BuiltinScene* builtin = findBuiltinScene(scene);
   if (!builtin) {
@@ -35,7 +38,7 @@ std::optional<SceneInfo> buildInto(World& world, const std::string& scene) {
     return std::nullopt;
   }
   return SceneInfo{std::string(builtin->name), std::string(builtin->description), builtin->timeStep,
-                   builtin->defaultSeconds};
+                   builtin->defaultSeconds, {}, {}};
 }
 
 bool overrideSolver(World& world, int iterations, int substeps) {

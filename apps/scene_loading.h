@@ -4,6 +4,7 @@
 
 #include <tandem/world.h>
 
+#include <array>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -17,6 +18,9 @@ struct SceneInfo {
   std::string description;
   double timeStep = 0;
   double duration = 0;
+  // A scene file's colours by body index (built-in scenes have none): unset, the palette's.
+  std::vector<std::optional<std::array<double, 3>>> rigidColours;
+  std::vector<std::optional<std::array<double, 3>>> deformableColours;
 };
 
 // Builds a scene file or a built-in scene into `world`; prints the problem and returns nothing

@@ -13,6 +13,9 @@
 #ifdef TANDEM_HAS_RENDER
 #include "render_command.h"
 #endif
+#ifdef TANDEM_HAS_EXPORT
+#include "export_command.h"
+#endif
 
 #include <CLI/CLI.hpp>
 
@@ -22,6 +25,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -289,6 +293,15 @@ int main(int argc, char** argv) {
     });
 #endif
 
+#ifdef TANDEM_HAS_EXPORT
+  const std::function<int()> runExportCommand = tandem::cli::addExportCommand(app);
+#else
+  app.add_subcommand("export", "(not built: needs tinygltf)")->allow_extras()->callback([] {
+    std::fprintf(stderr, "tandem: this build has no export; install libtinygltf-dev and build again (scripts/setup.sh does)\n");
+    std::exit(1);
+  });
+#endif
+
   // A first word that is no command gets its own message (CLI11 says "A subcommand is required").
   if (argc > 1 && argv[1][0] != '-') {
     std::string commands;
@@ -309,6 +322,9 @@ int main(int argc, char** argv) {
   }
 #ifdef TANDEM_HAS_RENDER
   if (const int status = runRenderCommand(); status >= 0) return status;
+#endif
+#ifdef TANDEM_HAS_EXPORT
+  if (const int status = runExportCommand(); status >= 0) return status;
 #endif
   if (listCommand->parsed()) {
     list();

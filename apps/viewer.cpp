@@ -9,6 +9,7 @@
 
 #include "exit_codes.h"
 #include "scene_loading.h"
+#include "scene_looks.h"
 
 #include "render/camera.h"
 #include "render/gl.h"
@@ -24,6 +25,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -53,6 +55,7 @@ double g_wheelSteps = 0.0;  // GLFW's scroll callback adds here; the frame loop 
 void onScroll(GLFWwindow*, double, double y) { g_wheelSteps += y; }
 
 constexpr int kMaxStepsPerFrame = 4;  // behind real time by more than this, the viewer slows down
+constexpr float kPanelWidth = 380.0f;  // screen units: the panel is a sidebar, the scene is drawn beside it
 constexpr size_t kStepHistory = 300;
 
 class Viewer {
@@ -90,8 +93,7 @@ class Viewer {
       m_camera = render::Camera::lookAt({c[0], c[1], c[2]}, {c[3], c[4], c[5]});
     } else if (!keepSettings || first) {
       const auto [low, high] = render::sceneBounds(*m_world);
-      int width = 1, height = 1;
-      glfwGetFramebufferSize(m_window, &width, &height);
+      const auto [x, width, height] = sceneViewport();
       m_camera = render::Camera::framing(low, high, double(std::max(width, 1)) / std::max(height, 1));
     }
     return true;
@@ -112,7 +114,8 @@ class Viewer {
 
       int width = 0, height = 0;
       glfwGetFramebufferSize(m_window, &width, &height);
-      if (width > 0 && height > 0) m_renderer->draw(*m_world, m_camera, width, height, drawOptions());
+      const auto [sceneX, sceneWidth, sceneHeight] = sceneViewport();
+      if (sceneWidth > 0 && sceneHeight > 0) m_renderer->draw(*m_world, m_camera, sceneWidth, sceneHeight, drawOptions(sceneX));
       drawPanels();
       ++frame;
       const bool lastFrame =
@@ -181,14 +184,26 @@ class Viewer {
     if (pressed(GLFW_KEY_W)) m_wireframe = !m_wireframe;
   }
 
-  // The cursor in framebuffer pixels (a window may have more pixels than screen units).
+  // Where the scene is drawn, in framebuffer pixels: right of the panel, as tall as the window
+  // (left edge, width, height). A window may have more pixels than screen units.
+  std::array<int, 3> sceneViewport() const {
+    int width = 0, height = 0, windowWidth = 1, windowHeight = 1;
+    glfwGetFramebufferSize(m_window, &width, &height);
+    glfwGetWindowSize(m_window, &windowWidth, &windowHeight);
+    const int left = std::min(width / 2, static_cast<int>(kPanelWidth * width / std::max(windowWidth, 1)));
+    return {left, width - left, height};
+  }
+
+  // The cursor in pixels of the scene's viewport (see sceneViewport), and its size.
   std::pair<double, double> cursor(int& width, int& height) const {
     double x = 0, y = 0;
-    int windowWidth = 1, windowHeight = 1;
+    int windowWidth = 1, windowHeight = 1, framebufferWidth = 0;
     glfwGetCursorPos(m_window, &x, &y);
     glfwGetWindowSize(m_window, &windowWidth, &windowHeight);
-    glfwGetFramebufferSize(m_window, &width, &height);
-    return {x * width / std::max(windowWidth, 1), y * height / std::max(windowHeight, 1)};
+    glfwGetFramebufferSize(m_window, &framebufferWidth, &height);
+    const auto [left, sceneWidth, sceneHeight] = sceneViewport();
+    width = sceneWidth;
+    return {x * framebufferWidth / std::max(windowWidth, 1) - left, y * height / std::max(windowHeight, 1)};
   }
 
   void handleMouse() {
@@ -259,8 +274,11 @@ class Viewer {
     m_drag = Drag::Grab;
   }
 
-  render::RenderOptions drawOptions() const {
+  render::RenderOptions drawOptions(int viewportX) const {
     render::RenderOptions options;
+    applySceneColours(m_info, options);
+    options.viewportX = viewportX;
+    options.shadows = m_shadows;
     options.wireframe = m_wireframe;
     options.contacts = m_contacts;
     options.forceScale = m_forceScale;
@@ -276,9 +294,9 @@ class Viewer {
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
-    ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(370, 0), ImGuiCond_FirstUseEver);
-    ImGui::Begin("Tandem");
+    ImGui::SetNextWindowPos(ImVec2(0, 0), ImGuiCond_Always);
+    ImGui::SetNextWindowSize(ImVec2(kPanelWidth, ImGui::GetIO().DisplaySize.y), ImGuiCond_Always);
+    ImGui::Begin("Tandem", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
     ImGui::PushItemWidth(-175);  // room for the labels
     scenePanel();
     solverPanel();
@@ -333,12 +351,15 @@ class Viewer {
     ImGui::Checkbox("wireframe", &m_wireframe);
     ImGui::SameLine();
     ImGui::Checkbox("contacts and forces", &m_contacts);
+    ImGui::Checkbox("shadows", &m_shadows);
     ImGui::SliderFloat("force arrows (m/N)", &m_forceScale, 0.001f, 1.0f, "%.3f", ImGuiSliderFlags_Logarithmic);
   }
 
   void statsPanel() {
     if (!ImGui::CollapsingHeader("Stats", ImGuiTreeNodeFlags_DefaultOpen)) return;
     const StepReport& report = m_world->lastReport();
+    ImGui::Text("%.0f frames per second (%.1f ms a frame)", ImGui::GetIO().Framerate,
+                1000.0f / std::max(ImGui::GetIO().Framerate, 1e-3f));
     ImGui::Text("%d deformables (%d nodes), %d rigid bodies", m_world->deformableCount(), nodeCount(*m_world),
                 m_world->rigidBodyCount());
     for (size_t s = 0; s < report.stageSeconds.size(); ++s)
@@ -384,7 +405,7 @@ class Viewer {
   std::optional<Grab> m_grab;
   double m_lastX = 0, m_lastY = 0;
   bool m_keysDown[GLFW_KEY_LAST + 1] = {};
-  bool m_wireframe = false, m_contacts = false;
+  bool m_wireframe = false, m_contacts = false, m_shadows = true;
   float m_forceScale = 0.05f, m_baumgarte = 0.1f, m_grabFrequency = 5.0f, m_grabStrength = 30.0f;
   std::deque<float> m_stepMs;
   std::string m_error;

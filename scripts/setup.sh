@@ -7,6 +7,8 @@ cd "$(dirname "$0")/.."
 packages=(build-essential cmake ninja-build pkg-config
           libbullet-dev libeigen3-dev libcli11-dev nlohmann-json3-dev libtinyobjloader-dev
           libgtest-dev libbenchmark-dev
+          # export: `tandem export` writes glTF 2.0 with tinygltf (Debian ships it as a shared library)
+          libtinygltf-dev
           # rendering: `tandem view` (GLFW, Dear ImGui), `tandem render` (EGL with no display,
           # Mesa's software rasteriser, ffmpeg for mp4); Xvfb and xdotool for the viewer's tests
           libopengl-dev libgl-dev libegl-dev libglfw3-dev libimgui-dev libstb-dev libegl-mesa0 libgl1-mesa-dri

@@ -131,6 +131,80 @@ TEST(Renderer, DrawsANewWorldLikeAFreshRendererAfterForgettingTheOld) {
   EXPECT_NE(box, ballFresh);  // the two worlds do look different
 }
 
+// The key light's shadow: the ground under a box, along the light, is darker with shadows than
+// without; ground far from the box is the same either way.
+TEST(Renderer, TheShadowDarkensTheGroundUnderABody) {
+  World world;
+  RigidBodyDesc ground;
+  ground.name = "ground";
+  ground.shape = RigidShape::plane({0, 1, 0}, 0);
+  ground.motion = MotionType::Static;
+  ASSERT_TRUE(world.addRigidBody(ground).ok());
+  RigidBodyDesc box;
+  box.name = "box";
+  box.shape = RigidShape::box({0.2, 0.2, 0.2});
+  box.position = {0, 0.6, 0};
+  ASSERT_TRUE(world.addRigidBody(box).ok());
+  Result<std::unique_ptr<render::OffscreenTarget>> target = render::OffscreenTarget::create(kWidth, kHeight);
+  ASSERT_TRUE(target.ok()) << target.message();
+  Result<std::unique_ptr<render::Renderer>> renderer = render::Renderer::create();
+  ASSERT_TRUE(renderer.ok()) << renderer.message();
+  const Camera camera = Camera::lookAt({-1.0, 3.0, -1.4}, {0, 0, 0});  // from the shadow's side
+  auto draw = [&](bool shadows) {
+    render::RenderOptions options;
+    options.shadows = shadows;
+    (*target)->bind();
+    (*renderer)->draw(world, camera, kWidth, kHeight, options);
+    return (*target)->readPixels();
+  };
+  const std::vector<uint8_t> lit = draw(false), shaded = draw(true);
+  auto brightness = [&](const std::vector<uint8_t>& rgb, const Vec3& point) {
+    const Eigen::Vector3d pixel = camera.project(point, kWidth, kHeight);
+    double sum = 0;  // a 5 x 5 patch, grid lines and all
+    for (int dy = -2; dy <= 2; ++dy)
+      for (int dx = -2; dx <= 2; ++dx) {
+        const size_t i = 3 * (size_t(pixel.y() + dy) * kWidth + size_t(pixel.x() + dx));
+        sum += rgb[i] + rgb[i + 1] + rgb[i + 2];
+      }
+    return sum / 75.0;
+  };
+  // Where the box's centre casts its shadow: down the key light (0.4, 1, 0.35) to the ground.
+  const Vec3 key = Vec3(0.4, 1.0, 0.35).normalized();
+  const Vec3 underBox = box.position - box.position.y() / key.y() * key;
+  const Vec3 farAway(1.2, 0, 0.8);
+  std::printf("ground under the box: %.1f lit, %.1f shadowed; far away: %.1f and %.1f\n", brightness(lit, underBox),
+              brightness(shaded, underBox), brightness(lit, farAway), brightness(shaded, farAway));
+  EXPECT_LT(brightness(shaded, underBox), 0.7 * brightness(lit, underBox));
+  EXPECT_NEAR(brightness(shaded, farAway), brightness(lit, farAway), 2.0);
+}
+
+// A strip seen exactly edge-on has no area, but its rims are drawn as tubes: it still covers a
+// band of pixels as long as it is and at least a pixel thick.
+TEST(Renderer, AStripSeenEdgeOnStillCoversPixels) {
+  World world;
+  DeformableDesc strip;
+  strip.name = "strip";
+  strip.mesh = *makeClothGrid({-0.5, 0.5, -0.025}, {1, 0, 0}, {0, 0, 0.05}, 21, 2, 0.1);
+  ASSERT_TRUE(world.addDeformable(strip).ok());
+  Result<std::unique_ptr<render::OffscreenTarget>> target = render::OffscreenTarget::create(kWidth, kHeight);
+  ASSERT_TRUE(target.ok()) << target.message();
+  Result<std::unique_ptr<render::Renderer>> renderer = render::Renderer::create();
+  ASSERT_TRUE(renderer.ok()) << renderer.message();
+  const Camera camera = Camera::lookAt({0, 0.5, 2.0}, {0, 0.5, 0});  // in the strip's plane
+  render::RenderOptions options;
+  options.deformableColours = {render::Rgb{0.1f, 0.9f, 0.1f}};
+  (*target)->bind();
+  (*renderer)->draw(world, camera, kWidth, kHeight, options);
+  const std::vector<uint8_t> rgb = (*target)->readPixels();
+  int green = 0;
+  for (size_t i = 0; i < rgb.size(); i += 3) green += rgb[i + 1] > 60 && rgb[i + 1] > 1.5 * rgb[i] && rgb[i + 1] > 1.5 * rgb[i + 2];
+  const double lengthPixels = camera.project({0.5, 0.5, 0.025}, kWidth, kHeight).x() -
+                              camera.project({-0.5, 0.5, 0.025}, kWidth, kHeight).x();
+  std::printf("the edge-on strip covers %d pixels; it is %.0f pixels long\n", green, lengthPixels);
+  EXPECT_GT(green, 0.9 * lengthPixels);
+  EXPECT_LT(green, 8 * lengthPixels);  // a thin band, not a blob
+}
+
 // ---- With the command ---------------------------------------------------------------------
 
 std::string source(const std::string& path) { return std::string(TANDEM_SOURCE_DIR) + "/" + path; }
@@ -250,11 +324,58 @@ TEST(RenderCommand, Mp4AndFolderOutputsAndBadRequests) {
   EXPECT_NE(output.find("no scene file or built-in scene"), std::string::npos) << output;
 }
 
+// A box thrown sideways in no gravity leaves the picture of a camera framed at t = 0; with --follow its centre
+// stays in the middle half of the picture. Its colour (pure red, from the scene file) finds it.
+TEST(RenderCommand, FollowKeepsAMovingBodyInView) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "tandem_test_follow";
+  std::filesystem::create_directories(dir);
+  const std::string scene = (dir / "thrown.json").string();
+  std::FILE* file = std::fopen(scene.c_str(), "w");
+  ASSERT_NE(file, nullptr);
+  std::fputs(R"({"format": 1, "gravity": [0, 0, 0], "rigid_bodies": [
+    {"name": "post", "shape": {"type": "box", "half_extents": [0.1, 0.1, 0.1]}, "mass": 0, "colour": "#808080"},
+    {"name": "thrown", "shape": {"type": "box", "half_extents": [0.1, 0.1, 0.1]}, "position": [0.5, 0, 0],
+     "linear_velocity": [3, 0, 0], "colour": [1, 0, 0]}]})",
+             file);
+  std::fclose(file);
+  auto redCentre = [&](bool follow, int& count) {
+    const std::filesystem::path frames = dir / (follow ? "follow" : "still");
+    std::string output;
+    EXPECT_EQ(runCommand(std::string(TANDEM_CLI) + " render " + scene + " --frames 3 --fps 1 --width 160 --height 120 --out " +
+                             frames.string() + "/" + (follow ? " --follow" : ""),
+                         output),
+              0)
+        << output;
+    const Image image = loadPng((frames / "frame_00002.png").string());  // t = 2 s
+    Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+    count = 0;
+    for (int y = 0; y < image.height; ++y)
+      for (int x = 0; x < image.width; ++x)
+        if (isClothRed(image.at(x, y))) {
+          sum += Eigen::Vector2d(x, y);
+          ++count;
+        }
+    return count ? Eigen::Vector2d(sum / count) : Eigen::Vector2d(-1, -1);
+  };
+  int stillCount = 0, followCount = 0;
+  redCentre(false, stillCount);
+  const Eigen::Vector2d centre = redCentre(true, followCount);
+  EXPECT_EQ(stillCount, 0);  // 6.5 m away: out of the still camera's picture
+  EXPECT_GT(followCount, 20);
+  EXPECT_GT(centre.x(), 40);
+  EXPECT_LT(centre.x(), 120);
+  EXPECT_GT(centre.y(), 30);
+  EXPECT_LT(centre.y(), 90);
+}
+
 // ---- The viewer, under Xvfb ---------------------------------------------------------------
 
 // After a second the cloth hangs over the sphere, so its red covers at least the upper half of
 // the sphere's silhouette, which the framing camera puts in the middle of the window (the
 // panel is on the left, clear of it).
+// The viewer draws the scene right of its panel, in a 960 x 540 window at x in [380, 960).
+constexpr int kPanel = 380, kSceneWidth = 960 - kPanel;
+
 TEST(Viewer, RunsSixtyFramesAndTakesAScreenshotThatShowsTheScene) {
   const std::string png = std::filesystem::temp_directory_path() / "tandem_test_viewer.png";
   std::filesystem::remove(png);
@@ -271,12 +392,12 @@ TEST(Viewer, RunsSixtyFramesAndTakesAScreenshotThatShowsTheScene) {
   EXPECT_EQ(image.height, 540);
 
   World world;
-  const Camera camera = buildFramed(world, "scenes/cloth_sphere.json", 960.0 / 540.0);
+  const Camera camera = buildFramed(world, "scenes/cloth_sphere.json", double(kSceneWidth) / 540.0);
   const RigidBodyId sphere = *world.findRigidBody("sphere");
   const Vec3 centre = world.rigidPosition(sphere);
   const Vec3 right = camera.view().block<1, 3>(0, 0).transpose();
-  const double radius = (camera.project(centre + world.rigidShape(sphere).radius * right, 960, 540) -
-                         camera.project(centre, 960, 540)).head<2>().norm();
+  const double radius = (camera.project(centre + world.rigidShape(sphere).radius * right, kSceneWidth, 540) -
+                         camera.project(centre, kSceneWidth, 540)).head<2>().norm();
   const double halfSilhouette = 0.5 * std::numbers::pi * radius * radius / (960.0 * 540.0);
   const Coverage coverage = measure(image);
   EXPECT_GT(coverage.cloth, halfSilhouette) << "half the sphere's silhouette: " << halfSilhouette;
@@ -291,12 +412,13 @@ Vec3 finalBoxPosition(const std::string& output) {
   return {std::stod(match[1]), std::stod(match[2]), std::stod(match[3])};
 }
 
-// The box sits at the picture's centre (pixel 480, 270 of 960 x 540); dragging it 200 pixels to
-// the right pulls it along +x, on the floor. Dragging across empty sky only turns the camera.
+// The box sits at the scene's centre (pixel 670, 270 of 960 x 540: the middle of the part right
+// of the panel); dragging it 200 pixels to the right pulls it along +x, on the floor. Dragging
+// across empty sky only turns the camera.
 TEST(Viewer, MouseDragOnABodyMovesItAndOnEmptySpaceMovesNothing) {
   const std::string script = source("tests/viewer_drag.sh") + " " + TANDEM_CLI + " " + source("tests/data/drag_box.json");
   std::string output;
-  ASSERT_EQ(runCommand(script + " 480 270 680 270", output), 0) << output;
+  ASSERT_EQ(runCommand(script + " 670 270 870 270", output), 0) << output;
   const Vec3 dragged = finalBoxPosition(output);
   ASSERT_TRUE(dragged.allFinite()) << output;
   EXPECT_GT(dragged.x(), 0.3) << output;  // 200 px at 3 m is about 0.6 m
@@ -312,7 +434,8 @@ TEST(Viewer, MouseDragOnABodyMovesItAndOnEmptySpaceMovesNothing) {
 // follows it, sliding on the floor.
 TEST(Viewer, DraggingTheClothPullsTheBodyItIsAnchoredTo) {
   const Vec3 eye(0.3, 1.4, 1.2), target(0.3, 0.0, 0.0);
-  const Eigen::Vector3d pixel = Camera::lookAt(eye, target).project({0.31, 0.012, 0.0}, 960, 540);
+  Eigen::Vector3d pixel = Camera::lookAt(eye, target).project({0.31, 0.012, 0.0}, kSceneWidth, 540);
+  pixel.x() += kPanel;
   char arguments[160];
   std::snprintf(arguments, sizeof arguments, " %d %d %d %d %g,%g,%g,%g,%g,%g", int(pixel.x()), int(pixel.y()),
                 int(pixel.x()) + 150, int(pixel.y()), eye.x(), eye.y(), eye.z(), target.x(), target.y(), target.z());

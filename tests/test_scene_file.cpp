@@ -67,6 +67,30 @@ TEST(SceneFile, RopeAlongAPathAndSubstepsRoundTrip) {
   EXPECT_NEAR((x[12] - Vec3(0, 1, 0)).norm(), 0.0, 1e-12);  // half way along the 2.4 m path
 }
 
+// Colours: "#rrggbb" and [r, g, b] read as the same numbers, written back as [r, g, b], and a
+// body without one has none (the renderer's palette).
+TEST(SceneFile, ColoursReadAsHexOrNumbersAndWriteBack) {
+  const std::string json = R"({"format": 1, "rigid_bodies": [
+    {"name": "bar", "shape": {"type": "box", "half_extents": [0.3, 0.02, 0.1]}, "colour": "#5C3a21"},
+    {"name": "plain", "shape": {"type": "sphere", "radius": 0.1}}],
+    "deformables": [{"name": "rope", "mesh": {"type": "rope", "start": [0, 1, 0], "end": [0, 0, 0], "nodes": 5},
+    "mass": 0.1, "colour": [0.25, 0.5, 1]}]})";
+  Result<Scene> scene = parseScene(json, "colours.json", ".");
+  ASSERT_TRUE(scene.ok()) << scene.message();
+  ASSERT_TRUE(scene->rigidBodies[0].colour.has_value());
+  EXPECT_EQ(*scene->rigidBodies[0].colour, (Colour{0x5c / 255.0, 0x3a / 255.0, 0x21 / 255.0}));
+  EXPECT_FALSE(scene->rigidBodies[1].colour.has_value());
+  ASSERT_TRUE(scene->deformables[0].colour.has_value());
+  EXPECT_EQ(*scene->deformables[0].colour, (Colour{0.25, 0.5, 1.0}));
+  const std::string written = sceneToJson(*scene);
+  Result<Scene> reread = parseScene(written, "again.json", ".");
+  ASSERT_TRUE(reread.ok()) << reread.message();
+  EXPECT_EQ(reread->rigidBodies[0].colour, scene->rigidBodies[0].colour);  // to the last bit
+  EXPECT_FALSE(reread->rigidBodies[1].colour.has_value());
+  EXPECT_EQ(reread->deformables[0].colour, scene->deformables[0].colour);
+  EXPECT_EQ(sceneToJson(*reread), written);
+}
+
 // A scene made through the API with one of everything the format has.
 Scene everythingScene() {
   Scene scene;
@@ -527,6 +551,16 @@ const std::vector<BadScene> kBadScenes{
      "/anchors/0: give exactly one of 'node' (an index), 'nearest' (a point) or 'face' (a triangle index)"},
     {"anchor_face_on_rope", scene(kBox, kRope, R"({"deformable": "rope", "face": 0, "body": "box"})"),
      "/anchors/0/face: triangle 0 is out of range (the mesh has 0 triangles)"},
+    {"colour_too_bright", scene(R"({"name": "box", "shape": {"type": "sphere", "radius": 1}, "colour": [0.5, 1.5, 0]})"),
+     "/rigid_bodies/0/colour/1: must be in [0, 1], got 1.5"},
+    {"colour_short", scene(R"({"name": "box", "shape": {"type": "sphere", "radius": 1}, "colour": [0.5, 0.5]})"),
+     "/rigid_bodies/0/colour: must be [r, g, b] with each in [0, 1], or \"#rrggbb\", got an array"},
+    {"colour_bad_hex", scene("", rope(R"("mass": 1, "colour": "#12345g")")),
+     "/deformables/0/colour: must be [r, g, b] with each in [0, 1], or \"#rrggbb\", got \"#12345g\""},
+    {"colour_name", scene("", rope(R"("mass": 1, "colour": "brown")")),
+     "/deformables/0/colour: must be [r, g, b] with each in [0, 1], or \"#rrggbb\", got \"brown\""},
+    {"color_spelling", scene(R"({"name": "box", "shape": {"type": "sphere", "radius": 1}, "color": [1, 0, 0]})"),
+     "/rigid_bodies/0/color: unknown field 'color'"},
     {"anchor_barycentric_sum", scene(kBox, kRope, R"({"deformable": "rope", "face": 0, "barycentric": [0.5, 0.5, 0.5], "body": "box"})"),
      "/anchors/0/barycentric: must sum to 1, they sum to 1.5"},
 };

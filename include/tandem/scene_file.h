@@ -20,6 +20,9 @@ namespace tandem {
 
 inline constexpr int kSceneFormatVersion = 1;
 
+// How a body looks: red, green and blue in [0, 1], as displayed (sRGB, like "#rrggbb").
+using Colour = std::array<double, 3>;
+
 // Where a deformable's mesh comes from: a generator and its parameters, or a file.
 struct SceneMesh {
   enum class Kind { Rope, ClothGrid, TetBox, TetCylinder, Obj, TetGen };
@@ -46,6 +49,7 @@ struct SceneMesh {
 struct SceneRigidBody {
   RigidBodyDesc desc;
   std::string shapeFile;  // convex hull or triangle mesh: the OBJ its points came from, as written
+  std::optional<Colour> colour;  // unset: the renderer's palette
 };
 
 struct SceneJoint {
@@ -77,6 +81,7 @@ struct SceneDeformable {
   std::optional<double> density;
   Vec3 initialVelocity = Vec3::Zero();  // m/s, every node
   std::vector<SceneFixedNodes> fixed;
+  std::optional<Colour> colour;  // unset: the renderer's palette
 };
 
 // A point of a deformable held to a point of a rigid body: a node by index, the node nearest a

@@ -147,4 +147,36 @@ inline std::pair<Vec3, Vec3> sceneBounds(const World& world) {
   return {low, high};
 }
 
+// The box holding what moves: every deformable node and every dynamic rigid body; the scene's
+// bounds when nothing moves.
+inline std::pair<Vec3, Vec3> movingBounds(const World& world) {
+  Vec3 low = Vec3::Constant(INFINITY), high = Vec3::Constant(-INFINITY);
+  for (int d = 0; d < world.deformableCount(); ++d)
+    for (const Vec3& p : world.nodePositions(DeformableId{d})) {
+      low = low.cwiseMin(p);
+      high = high.cwiseMax(p);
+    }
+  for (int b = 0; b < world.rigidBodyCount(); ++b) {
+    const RigidBodyId id{b};
+    if (world.rigidMass(id) == 0.0) continue;
+    const Quat orientation = world.rigidOrientation(id);
+    for (const Vec3& p : shapeSurface(world.rigidShape(id), 8).positions) {
+      const Vec3 q = world.rigidPosition(id) + orientation * p;
+      low = low.cwiseMin(q);
+      high = high.cwiseMax(q);
+    }
+  }
+  if (!low.allFinite()) return sceneBounds(world);
+  return {low, high};
+}
+
+// Keeps what moves in view: the camera turns to look at the middle of what moves and backs off
+// when it would not all fit; it never comes nearer, so the picture does not pump.
+inline void follow(Camera& camera, const World& world, double aspect) {
+  const auto [low, high] = movingBounds(world);
+  const Camera framed = Camera::framing(low, high, aspect, camera.yaw, camera.pitch);
+  camera.target = framed.target;
+  camera.distance = std::max(camera.distance, framed.distance);
+}
+
 }  // namespace tandem::render

@@ -5,9 +5,12 @@
 
 #include "render/gl.h"
 
+#include <tandem/deformable_surface.h>
 #include <tandem/shape_surface.h>
 
+#include <algorithm>
 #include <cmath>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -31,7 +34,8 @@ void main() {
 )";
 
 // Two-sided Blinn-Phong with a key and a fill light and a sky/ground ambient; a ground plane
-// gets anti-aliased grid lines from its world position (spacing 0: none).
+// gets anti-aliased grid lines from its world position (spacing 0: none). The key light casts
+// shadows: a 3×3 percentage-closer lookup in its shadow map (shadowStrength 0: none).
 constexpr const char* kMeshFragment = R"(#version 330 core
 in vec3 worldPosition;
 in vec3 worldNormal;
@@ -40,12 +44,27 @@ uniform vec3 eye;
 uniform float gridSpacing;
 uniform vec3 gridU;
 uniform vec3 gridV;
+uniform vec3 keyDirection;
+uniform mat4 lightViewProjection;
+uniform sampler2DShadow shadowMap;
+uniform float shadowStrength;
+uniform float shadowTexel;
 out vec4 fragmentColour;
+float keyLight(vec3 n) {
+  if (shadowStrength <= 0.0) return 1.0;
+  vec4 light = lightViewProjection * vec4(worldPosition, 1.0);
+  vec3 p = light.xyz / light.w * 0.5 + 0.5;
+  if (p.x <= 0.0 || p.x >= 1.0 || p.y <= 0.0 || p.y >= 1.0 || p.z >= 1.0) return 1.0;
+  float lit = 0.0;
+  for (int i = -1; i <= 1; ++i)
+    for (int j = -1; j <= 1; ++j) lit += texture(shadowMap, vec3(p.xy + vec2(i, j) * shadowTexel, p.z));
+  return 1.0 - shadowStrength * (1.0 - lit / 9.0);
+}
 void main() {
   vec3 n = normalize(worldNormal);
   vec3 toEye = normalize(eye - worldPosition);
   if (dot(n, toEye) < 0.0) n = -n;
-  vec3 key = normalize(vec3(0.4, 1.0, 0.35));
+  vec3 key = keyDirection;
   vec3 fill = normalize(vec3(-0.6, 0.35, -0.5));
   vec3 base = colour;
   if (gridSpacing > 0.0) {
@@ -55,11 +74,23 @@ void main() {
     float fade = clamp(1.0 - length(worldPosition - eye) / (60.0 * gridSpacing), 0.0, 1.0);
     base = mix(base, base * 0.55, line * fade);
   }
-  float diffuse = 0.75 * max(dot(n, key), 0.0) + 0.3 * max(dot(n, fill), 0.0);
+  float lit = keyLight(n);
+  float diffuse = 0.75 * lit * max(dot(n, key), 0.0) + 0.3 * max(dot(n, fill), 0.0);
   float ambient = 0.22 + 0.12 * n.y;
-  float specular = 0.2 * pow(max(dot(n, normalize(key + toEye)), 0.0), 48.0);
+  float specular = 0.2 * lit * pow(max(dot(n, normalize(key + toEye)), 0.0), 48.0);
   fragmentColour = vec4(base * (ambient + diffuse) + vec3(specular), 1.0);
 }
+)";
+
+// Depth only, from the key light.
+constexpr const char* kShadowVertex = R"(#version 330 core
+layout(location = 0) in vec3 position;
+uniform mat4 model;
+uniform mat4 lightViewProjection;
+void main() { gl_Position = lightViewProjection * model * vec4(position, 1.0); }
+)";
+constexpr const char* kShadowFragment = R"(#version 330 core
+void main() {}
 )";
 
 constexpr const char* kLineVertex = R"(#version 330 core
@@ -172,29 +203,37 @@ struct GpuMesh {
 
 Eigen::Matrix4f toFloat(const Mat4& m) { return m.cast<float>(); }
 
-// A tube around each edge of a mesh without faces (a rope), as a surface to shade.
-void addTube(const Vec3& a, const Vec3& b, double radius, std::vector<Vertex>& data, std::vector<uint32_t>& index) {
-  constexpr int kSides = 8;
-  const Vec3 axis = (b - a).normalized();
-  const Vec3 side = (std::abs(axis.y()) < 0.9 ? Vec3::UnitY() : Vec3::UnitX()).cross(axis).normalized();
-  const Vec3 other = axis.cross(side);
-  const auto first = static_cast<uint32_t>(data.size());
-  for (int s = 0; s < kSides; ++s) {
-    const double angle = 2.0 * std::numbers::pi * s / kSides;
-    const Vec3 n = std::cos(angle) * side + std::sin(angle) * other;
-    data.push_back(vertex(a + radius * n, n));
-    data.push_back(vertex(b + radius * n, n));
-  }
-  for (uint32_t s = 0; s < kSides; ++s) {
-    const uint32_t next = (s + 1) % kSides;
-    index.insert(index.end(), {first + 2 * s, first + 2 * next, first + 2 * next + 1, first + 2 * s,
-                               first + 2 * next + 1, first + 2 * s + 1});
-  }
-}
-
 std::array<float, 3> brighter(std::array<float, 3> c) {
   for (float& x : c) x = std::min(1.0f, 0.35f + 0.8f * x);
   return c;
+}
+
+// The key light: from above, in front and to the right of the default camera.
+const Vec3 kKeyDirection = Vec3(0.4, 1.0, 0.35).normalized();
+constexpr int kShadowMapSize = 2048;
+
+// An orthographic view from the key light over the box [low, high] (grown a little), deep
+// enough to hold the ground far below: what casts shadows is inside, what receives them may be
+// anywhere in its footprint.
+Eigen::Matrix4f lightViewProjection(const Vec3& low, const Vec3& high) {
+  const Vec3 centre = (low + high) / 2;
+  const double radius = std::max(0.5 * (high - low).norm(), 0.05) * 1.1;
+  const Vec3 forward = -kKeyDirection;
+  const Vec3 right = forward.cross(Vec3::UnitY()).normalized();
+  const Vec3 up = right.cross(forward);
+  const Vec3 eye = centre - 2.0 * radius * forward;
+  Mat4 view = Mat4::Identity();
+  view.block<1, 3>(0, 0) = right.transpose();
+  view.block<1, 3>(1, 0) = up.transpose();
+  view.block<1, 3>(2, 0) = -forward.transpose();
+  view.block<3, 1>(0, 3) = -view.block<3, 3>(0, 0) * eye;
+  const double nearPlane = 0.0, farPlane = 2.0 * radius + std::max(50.0, 20.0 * radius);
+  Mat4 projection = Mat4::Identity();
+  projection(0, 0) = 1.0 / radius;
+  projection(1, 1) = 1.0 / radius;
+  projection(2, 2) = -2.0 / (farPlane - nearPlane);
+  projection(2, 3) = -(farPlane + nearPlane) / (farPlane - nearPlane);
+  return toFloat(projection * view);
 }
 
 }  // namespace
@@ -213,9 +252,14 @@ std::array<float, 3> rigidColour(int index, bool isStatic) {
 }
 
 struct Renderer::Impl {
-  GLuint meshProgram = 0, lineProgram = 0;
+  GLuint meshProgram = 0, lineProgram = 0, shadowProgram = 0;
+  GLuint shadowFramebuffer = 0, shadowTexture = 0;
   std::vector<GpuMesh> rigidMeshes;       // by rigid body, in the body's frame
   std::vector<GpuMesh> deformableMeshes;  // by deformable, refreshed every frame
+  std::vector<std::unique_ptr<DeformableSurface>> deformableSurfaces;  // by deformable: rims found once
+  ShapeSurface surface;                   // the deformable being uploaded
+  std::vector<Vertex> vertexData;
+  std::vector<uint32_t> indexData;
   GpuMesh ground;                         // a unit square, scaled onto each plane
   GpuMesh lines;
   std::vector<Vertex> lineData;
@@ -228,6 +272,9 @@ struct Renderer::Impl {
     lines.destroy();
     if (meshProgram) glDeleteProgram(meshProgram);
     if (lineProgram) glDeleteProgram(lineProgram);
+    if (shadowProgram) glDeleteProgram(shadowProgram);
+    if (shadowFramebuffer) glDeleteFramebuffers(1, &shadowFramebuffer);
+    if (shadowTexture) glDeleteTextures(1, &shadowTexture);
   }
 
   void setMatrix(GLuint program, const char* name, const Eigen::Matrix4f& m) {
@@ -239,10 +286,36 @@ struct Renderer::Impl {
   void setColour(const std::array<float, 3>& c) {
     glUniform3f(glGetUniformLocation(meshProgram, "colour"), c[0], c[1], c[2]);
   }
-  void setModel(const Eigen::Matrix4f& model) {
-    setMatrix(meshProgram, "model", model);
+  void setModel(GLuint program, const Eigen::Matrix4f& model) {
+    setMatrix(program, "model", model);
+    if (program != meshProgram) return;
     const Eigen::Matrix3f normal = model.block<3, 3>(0, 0).inverse().transpose();
     glUniformMatrix3fv(glGetUniformLocation(meshProgram, "normalMatrix"), 1, GL_FALSE, normal.data());
+  }
+
+  // A depth texture the key light draws into; lookups outside it read "lit".
+  void createShadowMap() {
+    glGenTextures(1, &shadowTexture);
+    glBindTexture(GL_TEXTURE_2D, shadowTexture);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, kShadowMapSize, kShadowMapSize, 0, GL_DEPTH_COMPONENT,
+                 GL_FLOAT, nullptr);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
+    const float border[] = {1.0f, 1.0f, 1.0f, 1.0f};
+    glTexParameterfv(GL_TEXTURE_2D, GL_TEXTURE_BORDER_COLOR, border);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    glGenFramebuffers(1, &shadowFramebuffer);
+    GLint previous = 0;
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previous);
+    glBindFramebuffer(GL_FRAMEBUFFER, shadowFramebuffer);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, shadowTexture, 0);
+    glDrawBuffer(GL_NONE);
+    glReadBuffer(GL_NONE);
+    glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(previous));
   }
 
   void line(const Vec3& a, const Vec3& b, const std::array<float, 3>& colour) {
@@ -264,47 +337,71 @@ struct Renderer::Impl {
     lineIndex.clear();
   }
 
-  void refreshRigidMeshes(const World& world) {
+  void upload(GpuMesh& mesh, const ShapeSurface& s, GLenum usage) {
+    vertexData.clear();
+    indexData.clear();
+    for (size_t i = 0; i < s.positions.size(); ++i) vertexData.push_back(vertex(s.positions[i], s.normals[i]));
+    for (const auto& t : s.triangles) indexData.insert(indexData.end(), {uint32_t(t[0]), uint32_t(t[1]), uint32_t(t[2])});
+    mesh.upload(vertexData, indexData, usage);
+  }
+
+  void refreshMeshes(const World& world) {
     while (static_cast<int>(rigidMeshes.size()) < world.rigidBodyCount()) {
       const RigidShape& shape = world.rigidShape(RigidBodyId{static_cast<int32_t>(rigidMeshes.size())});
-      const ShapeSurface surface = shapeSurface(shape, 40);
-      std::vector<Vertex> data;
-      std::vector<uint32_t> index;
-      for (size_t i = 0; i < surface.positions.size(); ++i) data.push_back(vertex(surface.positions[i], surface.normals[i]));
-      for (const auto& t : surface.triangles) index.insert(index.end(), {uint32_t(t[0]), uint32_t(t[1]), uint32_t(t[2])});
-      rigidMeshes.emplace_back().upload(data, index, GL_STATIC_DRAW);
+      upload(rigidMeshes.emplace_back(), shapeSurface(shape, 40), GL_STATIC_DRAW);
+    }
+    deformableMeshes.resize(std::max(deformableMeshes.size(), static_cast<size_t>(world.deformableCount())));
+    deformableSurfaces.resize(world.deformableCount());
+    for (int d = 0; d < world.deformableCount(); ++d) {
+      if (!deformableSurfaces[d]) deformableSurfaces[d] = std::make_unique<DeformableSurface>(world.restMesh(DeformableId{d}));
+      deformableSurfaces[d]->build(world.nodePositions(DeformableId{d}), surface);
+      upload(deformableMeshes[d], surface, GL_STREAM_DRAW);
     }
   }
 
-  // Smooth normals: each node's is the area-weighted sum of its faces' normals.
-  void refreshDeformableMesh(const World& world, int d) {
-    const DeformableId id{d};
-    const std::span<const Vec3> x = world.nodePositions(id);
-    const DeformableMesh& mesh = world.restMesh(id);
-    std::vector<Vertex> data;
-    std::vector<uint32_t> index;
-    if (mesh.triangles.empty()) {
-      for (const auto& e : mesh.edges) addTube(x[e[0]], x[e[1]], 0.01, data, index);
-    } else {
-      std::vector<Vec3> normals(x.size(), Vec3::Zero());
-      for (const auto& t : mesh.triangles) {
-        const Vec3 n = (x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]);
-        for (int k = 0; k < 3; ++k) normals[t[k]] += n;
-        index.insert(index.end(), {uint32_t(t[0]), uint32_t(t[1]), uint32_t(t[2])});
-      }
-      data.reserve(x.size());
-      for (size_t i = 0; i < x.size(); ++i) {
-        const double length = normals[i].norm();
-        data.push_back(vertex(x[i], length > 0 ? Vec3(normals[i] / length) : Vec3::UnitY()));
-      }
+  // Every body but planes, with `program` (the mesh or the shadow program); `colourOf` sets
+  // each one's colour (mesh program only).
+  template <class SetColour>
+  void drawBodies(const World& world, GLuint program, SetColour setColourOf) {
+    for (int b = 0; b < world.rigidBodyCount(); ++b) {
+      const RigidBodyId id{b};
+      if (world.rigidShape(id).type == ShapeType::Plane) continue;
+      Eigen::Matrix4f model = Eigen::Matrix4f::Identity();
+      model.block<3, 3>(0, 0) = world.rigidOrientation(id).normalized().toRotationMatrix().cast<float>();
+      model.block<3, 1>(0, 3) = world.rigidPosition(id).cast<float>();
+      setModel(program, model);
+      setColourOf(std::optional<RigidBodyId>(id), std::optional<DeformableId>());
+      rigidMeshes[b].draw(GL_TRIANGLES);
     }
-    if (static_cast<int>(deformableMeshes.size()) <= d) deformableMeshes.resize(d + 1);
-    deformableMeshes[d].upload(data, index, GL_STREAM_DRAW);
+    setModel(program, Eigen::Matrix4f::Identity());
+    for (int d = 0; d < world.deformableCount(); ++d) {
+      setColourOf(std::optional<RigidBodyId>(), std::optional<DeformableId>(DeformableId{d}));
+      deformableMeshes[d].draw(GL_TRIANGLES);
+    }
+  }
+
+  // The key light's depth over everything but planes, into the shadow map; the caller's
+  // framebuffer and viewport are put back.
+  void drawShadowMap(const World& world, const Eigen::Matrix4f& light) {
+    GLint previous = 0, viewport[4] = {};
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previous);
+    glGetIntegerv(GL_VIEWPORT, viewport);
+    glBindFramebuffer(GL_FRAMEBUFFER, shadowFramebuffer);
+    glViewport(0, 0, kShadowMapSize, kShadowMapSize);
+    glClear(GL_DEPTH_BUFFER_BIT);
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(2.0f, 4.0f);
+    glUseProgram(shadowProgram);
+    setMatrix(shadowProgram, "lightViewProjection", light);
+    drawBodies(world, shadowProgram, [](auto, auto) {});
+    glDisable(GL_POLYGON_OFFSET_FILL);
+    glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(previous));
+    glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
   }
 
   // An infinite plane as a square of 40 m (or 80 camera distances) around the point under the
   // camera's target, with grid lines every 0.25 m.
-  void drawPlane(const RigidShape& plane, const Camera& camera) {
+  void drawPlane(const RigidShape& plane, const Camera& camera, const std::array<float, 3>& colour) {
     const Vec3 n = plane.planeNormal.normalized();
     const Vec3 u = (std::abs(n.y()) < 0.9 ? Vec3::UnitY() : Vec3::UnitX()).cross(n).normalized();
     const Vec3 v = n.cross(u);
@@ -315,8 +412,8 @@ struct Renderer::Impl {
     model.block<3, 1>(0, 1) = (half * n).cast<float>();
     model.block<3, 1>(0, 2) = (half * v).cast<float>();
     model.block<3, 1>(0, 3) = centre.cast<float>();
-    setModel(model);
-    setColour({0.55f, 0.56f, 0.58f});
+    setModel(meshProgram, model);
+    setColour(colour);
     glUniform1f(glGetUniformLocation(meshProgram, "gridSpacing"), 0.25f);
     setVector("gridU", u);
     setVector("gridV", v);
@@ -330,6 +427,7 @@ Renderer::Renderer() : m_impl(std::make_unique<Impl>()) {}
 void Renderer::forgetWorld() {
   for (GpuMesh& mesh : m_impl->rigidMeshes) mesh.destroy();
   m_impl->rigidMeshes.clear();
+  m_impl->deformableSurfaces.clear();
 }
 Renderer::~Renderer() = default;
 
@@ -342,6 +440,10 @@ Result<std::unique_ptr<Renderer>> Renderer::create() {
   Result<GLuint> lines = link(kLineVertex, kLineFragment);
   if (!lines) return Error{lines.message()};
   r.lineProgram = *lines;
+  Result<GLuint> shadow = link(kShadowVertex, kShadowFragment);
+  if (!shadow) return Error{shadow.message()};
+  r.shadowProgram = *shadow;
+  r.createShadowMap();
   const Vec3 up = Vec3::UnitY();  // the unit ground square, in the plane's (u, n, v) frame
   r.ground.upload({vertex(Vec3(-1, 0, -1), up), vertex(Vec3(1, 0, -1), up), vertex(Vec3(1, 0, 1), up),
                    vertex(Vec3(-1, 0, 1), up)},
@@ -351,50 +453,58 @@ Result<std::unique_ptr<Renderer>> Renderer::create() {
 
 void Renderer::draw(const World& world, const Camera& camera, int width, int height, const RenderOptions& options) {
   Impl& r = *m_impl;
-  glViewport(0, 0, width, height);
-  glClearColor(0.19f, 0.21f, 0.25f, 1.0f);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  r.refreshMeshes(world);
   glEnable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);  // cloth has two sides
-  const Eigen::Matrix4f viewProjection = toFloat(camera.projection(double(width) / height) * camera.view());
+  const auto [low, high] = sceneBounds(world);
+  const Eigen::Matrix4f light = lightViewProjection(low, high);
+  if (options.shadows) r.drawShadowMap(world, light);
 
+  glViewport(options.viewportX, 0, width, height);
+  glClearColor(0.19f, 0.21f, 0.25f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  const Eigen::Matrix4f viewProjection = toFloat(camera.projection(double(width) / height) * camera.view());
   glUseProgram(r.meshProgram);
   r.setMatrix(r.meshProgram, "viewProjection", viewProjection);
+  r.setMatrix(r.meshProgram, "lightViewProjection", light);
   r.setVector("eye", camera.eye());
+  r.setVector("keyDirection", kKeyDirection);
   glUniform1f(glGetUniformLocation(r.meshProgram, "gridSpacing"), 0.0f);
-  r.refreshRigidMeshes(world);
-  auto drawBodies = [&](bool wire) {
-    for (int b = 0; b < world.rigidBodyCount(); ++b) {
-      const RigidBodyId id{b};
-      const RigidShape& shape = world.rigidShape(id);
-      if (shape.type == ShapeType::Plane) {
-        if (!wire) r.drawPlane(shape, camera);
-        continue;
-      }
-      Eigen::Matrix4f model = Eigen::Matrix4f::Identity();
-      model.block<3, 3>(0, 0) = world.rigidOrientation(id).normalized().toRotationMatrix().cast<float>();
-      model.block<3, 1>(0, 3) = world.rigidPosition(id).cast<float>();
-      r.setModel(model);
-      std::array<float, 3> colour = rigidColour(b, world.rigidMass(id) == 0.0);
-      if (options.highlightRigid == id) colour = brighter(colour);
-      r.setColour(wire ? std::array<float, 3>{0.05f, 0.05f, 0.05f} : colour);
-      r.rigidMeshes[b].draw(GL_TRIANGLES);
+  glUniform1f(glGetUniformLocation(r.meshProgram, "shadowStrength"), options.shadows ? 0.85f : 0.0f);
+  glUniform1f(glGetUniformLocation(r.meshProgram, "shadowTexel"), 1.0f / kShadowMapSize);
+  glActiveTexture(GL_TEXTURE1);
+  glBindTexture(GL_TEXTURE_2D, r.shadowTexture);
+  glUniform1i(glGetUniformLocation(r.meshProgram, "shadowMap"), 1);
+  glActiveTexture(GL_TEXTURE0);
+
+  auto colourOf = [&](std::optional<RigidBodyId> rigid, std::optional<DeformableId> deformable) {
+    std::array<float, 3> colour{};
+    if (rigid) {
+      const size_t b = static_cast<size_t>(rigid->index);
+      colour = b < options.rigidColours.size() && options.rigidColours[b]
+                   ? *options.rigidColours[b]
+                   : rigidColour(rigid->index, world.rigidMass(*rigid) == 0.0);
+      if (options.highlightRigid == rigid) colour = brighter(colour);
+    } else {
+      const size_t d = static_cast<size_t>(deformable->index);
+      colour = d < options.deformableColours.size() && options.deformableColours[d] ? *options.deformableColours[d]
+                                                                                   : deformableColour(deformable->index);
+      if (options.highlightDeformable == deformable) colour = brighter(colour);
     }
-    r.setModel(Eigen::Matrix4f::Identity());
-    for (int d = 0; d < world.deformableCount(); ++d) {
-      if (!wire) r.refreshDeformableMesh(world, d);
-      std::array<float, 3> colour = deformableColour(d);
-      if (options.highlightDeformable == DeformableId{d}) colour = brighter(colour);
-      r.setColour(wire ? std::array<float, 3>{0.05f, 0.05f, 0.05f} : colour);
-      r.deformableMeshes[d].draw(GL_TRIANGLES);
-    }
+    return colour;
   };
-  drawBodies(false);
+  for (int b = 0; b < world.rigidBodyCount(); ++b)
+    if (world.rigidShape(RigidBodyId{b}).type == ShapeType::Plane) {
+      const bool custom = static_cast<size_t>(b) < options.rigidColours.size() && options.rigidColours[b];
+      r.drawPlane(world.rigidShape(RigidBodyId{b}), camera,
+                  custom ? *options.rigidColours[b] : std::array<float, 3>{0.55f, 0.56f, 0.58f});
+    }
+  r.drawBodies(world, r.meshProgram, [&](auto rigid, auto deformable) { r.setColour(colourOf(rigid, deformable)); });
   if (options.wireframe) {  // the edges over the shading, pulled a little towards the eye
     glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
     glEnable(GL_POLYGON_OFFSET_LINE);
     glPolygonOffset(-1.0f, -1.0f);
-    drawBodies(true);
+    r.drawBodies(world, r.meshProgram, [&](auto, auto) { r.setColour({0.05f, 0.05f, 0.05f}); });
     glDisable(GL_POLYGON_OFFSET_LINE);
     glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
   }

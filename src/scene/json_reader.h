@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <array>
 #include <cmath>
 #include <set>
 #include <stdexcept>
@@ -139,6 +140,28 @@ class ObjectReader {
   }
   Vec3 vec3(const std::string& key, const Vec3& fallback) { return has(key) ? vec3(key) : fallback; }
   Vec3 vec3(const std::string& key) { return readVec3(required(key), fieldPath(key)); }
+
+  // A colour: [r, g, b] with each in [0, 1], or "#rrggbb".
+  std::array<double, 3> colour(const std::string& key) {
+    const Json& value = required(key);
+    const std::string path = fieldPath(key);
+    const std::string expected = "must be [r, g, b] with each in [0, 1], or \"#rrggbb\"";
+    std::array<double, 3> rgb{};
+    if (value.is_string()) {
+      const std::string text = value.get<std::string>();
+      const bool hex = text.size() == 7 && text[0] == '#' &&
+                       text.find_first_not_of("0123456789abcdefABCDEF", 1) == std::string::npos;
+      if (!hex) fail(path, expected + ", got \"" + text + "\"");
+      for (int k = 0; k < 3; ++k) rgb[k] = std::stoi(text.substr(1 + 2 * k, 2), nullptr, 16) / 255.0;
+      return rgb;
+    }
+    if (!value.is_array() || value.size() != 3) fail(path, expected + ", got " + typeName(value));
+    for (int k = 0; k < 3; ++k) {
+      rgb[k] = readNumber(value[k], path + "/" + std::to_string(k));
+      if (rgb[k] < 0 || rgb[k] > 1) fail(path + "/" + std::to_string(k), "must be in [0, 1], got " + formatValue(rgb[k]));
+    }
+    return rgb;
+  }
 
   // A string that must be one of `choices` (name, value).
   template <class T>

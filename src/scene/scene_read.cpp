@@ -178,6 +178,7 @@ SceneRigidBody readRigidBody(const Json& value, const std::string& path, const B
   d.canSleep = body.boolean("can_sleep", d.canSleep);
   d.collisionGroup = body.bits("collision_group", d.collisionGroup);
   d.collisionMask = body.bits("collision_mask", d.collisionMask);
+  if (body.has("colour")) out.colour = body.colour("colour");
   body.finish();
   return out;
 }
@@ -392,6 +393,7 @@ SceneDeformable readDeformable(const Json& value, const std::string& path, const
   bounds.speed(out.initialVelocity, deformable.fieldPath("initial_velocity"));
   forEachElement(deformable, "fixed",
                  [&](const Json& element, const std::string& at) { out.fixed.push_back(readFixedNodes(element, at)); });
+  if (deformable.has("colour")) out.colour = deformable.colour("colour");
   deformable.finish();
   return out;
 }

@@ -14,6 +14,7 @@ namespace {
 using Json = nlohmann::ordered_json;
 
 Json vec(const Vec3& v) { return Json::array({v.x(), v.y(), v.z()}); }
+Json colourJson(const Colour& c) { return Json::array({c[0], c[1], c[2]}); }
 
 Json shapeJson(const SceneRigidBody& body) {
   const RigidShape& s = body.desc.shape;
@@ -68,6 +69,7 @@ Json rigidJson(const SceneRigidBody& body) {
            {"can_sleep", d.canSleep},
            {"collision_group", d.collisionGroup},
            {"collision_mask", d.collisionMask}};
+  if (body.colour) out["colour"] = colourJson(*body.colour);
   return out;
 }
 
@@ -186,6 +188,7 @@ Json deformableJson(const SceneDeformable& deformable) {
     fixed.push_back(entry);
   }
   out["fixed"] = fixed;
+  if (deformable.colour) out["colour"] = colourJson(*deformable.colour);
   return out;
 }
 
