@@ -319,6 +319,8 @@ struct World::Impl final : bullet::SolverHooks {
       row.warmFriction = previous->second.friction;
       row.releasedLastStep = previous->second.releasedFromBlock;
     }
+    rows.colourContacts(nodes.size(), static_cast<size_t>(bullet.rigidBodyCount()),
+                        [&](int32_t body) { return bullet.isDynamic(body); });
   }
 
   void rememberContacts() {

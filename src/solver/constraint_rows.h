@@ -10,6 +10,7 @@
 #include "constraints/fixed_point.h"
 #include "constraints/grab.h"
 #include "constraints/inextensibility.h"
+#include "solver/graph_colouring.h"
 #include "solver/solver_state.h"
 
 #include <vector>
@@ -23,6 +24,23 @@ struct ConstraintRows {
   std::vector<BendingRow> bending;
   std::vector<ContactRow> contacts;  // found anew every step
   std::vector<GrabRow> grabs;        // inactive ones are released slots
+
+  // Contacts sorted by colour (solver/graph_colouring.h): a colour's contacts share no node or
+  // dynamic body.
+  ColourRanges contactColours;
+
+  // After contact detection, every step. `isDynamic(body)`: whether a body's velocity is written.
+  template <class IsDynamic>
+  void colourContacts(size_t nodeCount, size_t bodyCount, IsDynamic isDynamic) {
+    contactColours = colourRows(
+        contacts, nodeCount + bodyCount,
+        [&](const ContactRow& row, auto add) {
+          for (int k = 0; k < 4; ++k)
+            if (row.coefficient[k] != 0.0) add(static_cast<size_t>(row.node[k]));
+          if (row.body >= 0 && isDynamic(row.body)) add(nodeCount + static_cast<size_t>(row.body));
+        },
+        m_contactScratch);
+  }
 
   // Scalar rows per type (a fixed point or an anchor is three; friction two per contact).
   std::array<int, static_cast<size_t>(RowType::Count)> countRows() const {
@@ -99,6 +117,9 @@ struct ConstraintRows {
     for (ContactRow& row : contacts)
       if (!row.inDirectBlock && !(betweenDeformablesOnly && row.body >= 0)) solveContactNormal(row, ctx, stats);
   }
+
+ private:
+  ColouringScratch<ContactRow> m_contactScratch;
 };
 
 }  // namespace tandem
