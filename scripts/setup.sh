@@ -10,7 +10,9 @@ packages=(build-essential cmake ninja-build pkg-config
           # rendering: `tandem view` (GLFW, Dear ImGui), `tandem render` (EGL with no display,
           # Mesa's software rasteriser, ffmpeg for mp4); Xvfb and xdotool for the viewer's tests
           libopengl-dev libgl-dev libegl-dev libglfw3-dev libimgui-dev libstb-dev libegl-mesa0 libgl1-mesa-dri
-          ffmpeg xvfb xauth xdotool)
+          ffmpeg xvfb xauth xdotool
+          # the scene fuzzers (scripts/fuzz.sh): clang and its libFuzzer runtime
+          clang libclang-rt-14-dev)
 
 missing=()
 for package in "${packages[@]}"; do
