@@ -16,7 +16,9 @@ packages=(build-essential cmake ninja-build pkg-config
           # the paper's figures (scripts/figures.sh), the tests that read .npz records with NumPy,
           # the Python module (`import tandem`), its tests and examples, and `pip install .`
           python3 python3-dev pybind11-dev python3-numpy python3-pytest python3-matplotlib
-          python3-pip python3-setuptools python3-wheel)
+          python3-pip python3-setuptools python3-wheel
+          # the scene fuzzers (scripts/fuzz.sh): clang and its libFuzzer runtime
+          clang libclang-rt-14-dev)
 
 missing=()
 for package in "${packages[@]}"; do

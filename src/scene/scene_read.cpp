@@ -8,6 +8,8 @@
 #include "input_file.h"
 
 #include <filesystem>
+#include <fstream>
+#include <limits>
 #include <map>
 
 namespace tandem {
@@ -79,6 +81,9 @@ Quat readOrientation(ObjectReader& body) {
          scene::readNumber(value[2], path + "/2"), scene::readNumber(value[3], path + "/3"));
   const double norm = q.norm();
   if (std::abs(norm - 1.0) > 1e-3) fail(path, "must be a unit quaternion [w, x, y, z], its norm is " + scene::formatValue(norm));
+  // A quaternion already unit to rounding is kept bit for bit: normalising it again can move its
+  // last bit, and a scene written and read back would not be the scene written.
+  if (std::abs(q.squaredNorm() - 1.0) <= 4 * std::numeric_limits<double>::epsilon()) return q;
   return q.normalized();
 }
 
@@ -118,8 +123,11 @@ void readShape(ObjectReader& body, SceneRigidBody& out, const Bounds& bounds) {
       break;
     case ShapeType::Plane:
       s.planeNormal = shape.vec3("normal");
-      if (s.planeNormal.norm() < 1e-9) fail(shape.fieldPath("normal"), "must not be zero");
-      s.planeNormal.normalize();
+      // stableNorm: components past 1e154 would overflow the plain norm to inf (and normalise to 0).
+      if (s.planeNormal.stableNorm() < 1e-9) fail(shape.fieldPath("normal"), "must not be zero");
+      // Unit to rounding already: kept bit for bit, so that written and read back it is the same.
+      if (std::abs(s.planeNormal.squaredNorm() - 1.0) > 4 * std::numeric_limits<double>::epsilon())
+        s.planeNormal.stableNormalize();
       s.planeOffset = shape.number("offset", 0.0);
       bounds.coordinates(Vec3::Constant(s.planeOffset), shape.fieldPath("offset"));
       break;
