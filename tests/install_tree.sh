@@ -30,7 +30,7 @@ printed=$("$prefix/bin/tandem" --version)
 listed=$("$prefix/bin/tandem" list)
 grep -q "Scene files in $prefix/share/tandem/scenes" <<<"$listed" ||
   { echo "install_tree: the installed tandem does not find its scenes:"; echo "$listed"; status=1; }
-"$prefix/bin/tandem" run "$prefix/share/tandem/scenes/anchors.json" --steps 5 --quiet >/dev/null ||
+"$prefix/bin/tandem" run "$prefix/share/tandem/scenes/rope_wheel.json" --steps 5 --quiet >/dev/null ||
   { echo "install_tree: the installed tandem does not run an installed scene"; status=1; }
 
 ((status == 0)) && echo "install_tree: Tandem $version installed into $prefix"

@@ -93,12 +93,12 @@ void bindBuilding(py::class_<Self>& cls) {
           py::arg("deformable"), py::arg("node"), "Pins a node where it is: its inverse mass becomes zero.")
       .def(
           "put_rigid_to_sleep",
-          [](Self& w, RigidBodyId id) { w.world().putRigidToSleep(w.checkedRigid(id, "put_rigid_to_sleep")); },
+          [](Self& w, RigidBodyId id) { check(w.world().putRigidToSleep(w.checkedRigid(id, "put_rigid_to_sleep"))); },
           py::arg("body"), "Puts a rigid body to sleep.")
       .def(
           "set_rigid_can_sleep",
           [](Self& w, RigidBodyId id, bool canSleep) {
-            w.world().setRigidCanSleep(w.checkedRigid(id, "set_rigid_can_sleep"), canSleep);
+            check(w.world().setRigidCanSleep(w.checkedRigid(id, "set_rigid_can_sleep"), canSleep));
           },
           py::arg("body"), py::arg("can_sleep"), "Lets Bullet put the body to sleep, or not.")
       .def(
@@ -233,21 +233,17 @@ void bindDeformableQueries(py::class_<Self>& cls) {
       .def(
           "fixed_point_impulse",
           [](const Self& w, FixedPointId id) {
-            try {
-              return w.world().fixedPointImpulse(id);
-            } catch (const std::out_of_range&) {
+            if (!w.world().contains(id))
               throw py::index_error("fixed_point_impulse: no fixed point with id " + std::to_string(id.index));
-            }
+            return w.world().fixedPointImpulse(id);
           },
           py::arg("fixed_point"), "Impulse on the node in the last step (N*s).")
       .def(
           "anchor_state",
           [](const Self& w, AnchorId id) {
-            try {
-              return w.world().anchorState(id);
-            } catch (const std::out_of_range&) {
+            if (!w.world().contains(id))
               throw py::index_error("anchor_state: no anchor with id " + std::to_string(id.index));
-            }
+            return w.world().anchorState(id);
           },
           py::arg("anchor"), "The AnchorState after the last step: impulse and both points.")
       .def(
