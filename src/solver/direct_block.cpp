@@ -501,8 +501,8 @@ void DirectBlock::toVelocityChange(Eigen::VectorXd& impulse) const {
   for (size_t b = 0; b < m_bodies.size(); ++b) {
     if (m_bodyDof[b] < 0) continue;
     const int k = m_bodyMotion[b].freedoms;
-    const Vec6 generalised = impulse.segment(m_bodyDof[b], k);
-    impulse.segment(m_bodyDof[b], k) = m_bodyMotion[b].inverseMass.topLeftCorner(k, k) * generalised.head(k);
+    const Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1> generalised = impulse.segment(m_bodyDof[b], k);
+    impulse.segment(m_bodyDof[b], k) = m_bodyMotion[b].inverseMass.topLeftCorner(k, k) * generalised;
   }
 }
 
