@@ -4,8 +4,18 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
+#include <cstring>
 
 namespace tandem {
+
+Status closeRecordFile(std::FILE* file, const std::string& path) {
+  const bool written = std::fflush(file) == 0 && !std::ferror(file);
+  const int error = errno;
+  if (std::fclose(file) != 0 || !written)
+    return Error{"record: writing '" + path + "' failed: " + std::strerror(written ? errno : error)};
+  return {};
+}
 
 RecordFormat recordFormatOf(const std::string& path) {
   std::string extension = path.size() >= 4 ? path.substr(path.size() - 4) : std::string();

@@ -50,11 +50,7 @@ class CsvRecord final : public StepRecorder::Writer {
   Status close() override {
     std::FILE* f = m_file.release();
     if (!f) return Error{"record: '" + m_path + "' is already closed"};
-    const bool written = std::fflush(f) == 0 && !std::ferror(f);
-    const int error = errno;
-    if (std::fclose(f) != 0 || !written)
-      return Error{"record: writing '" + m_path + "' failed: " + std::strerror(written ? errno : error)};
-    return {};
+    return closeRecordFile(f, m_path);
   }
 
  private:

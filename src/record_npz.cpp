@@ -117,12 +117,7 @@ class NpzRecord final : public StepRecorder::Writer {
     }
     m_arrays.clear();
     if (Status s = npz.finish(); !s) return s;
-    std::FILE* f = file.release();
-    const bool written = std::fflush(f) == 0 && !std::ferror(f);
-    const int error = errno;
-    if (std::fclose(f) != 0 || !written)
-      return Error{"record: writing '" + m_path + "' failed: " + std::strerror(written ? errno : error)};
-    return {};
+    return closeRecordFile(file.release(), m_path);
   }
 
  private:

@@ -3,6 +3,7 @@
 
 #include <tandem/record.h>
 
+#include <cstdio>
 #include <memory>
 #include <string>
 
@@ -14,6 +15,9 @@ class StepRecorder::Writer {
   virtual Status write(const World& world) = 0;
   virtual Status close() = 0;
 };
+
+// Flushes and closes a record's file; a failure of either (a full disk) is an error naming it.
+Status closeRecordFile(std::FILE* file, const std::string& path);
 
 // src/record_csv.cpp
 Result<std::unique_ptr<StepRecorder::Writer>> openCsvRecord(const std::string& path, bool nodes);

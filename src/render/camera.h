@@ -125,17 +125,17 @@ struct Camera {
   }
 };
 
-// The box holding every deformable node and every rigid body but infinite planes, for framing
-// a scene.
-inline std::pair<Vec3, Vec3> sceneBounds(const World& world) {
+// The box holding every deformable node and every rigid body but infinite planes (with
+// `movingOnly`, only the dynamic ones); empty (infinite corners) when there is nothing.
+inline std::pair<Vec3, Vec3> bodyBounds(const World& world, bool movingOnly) {
   Vec3 low = Vec3::Constant(INFINITY), high = Vec3::Constant(-INFINITY);
-  for (int d = 0; d < world.deformableCount(); ++d)
-    for (const Vec3& p : world.nodePositions(DeformableId{d})) {
+  for (const DeformableId d : world.deformableIds())
+    for (const Vec3& p : world.nodePositions(d)) {
       low = low.cwiseMin(p);
       high = high.cwiseMax(p);
     }
-  for (int b = 0; b < world.rigidBodyCount(); ++b) {
-    const RigidBodyId id{b};
+  for (const RigidBodyId id : world.rigidBodies()) {
+    if (movingOnly && world.rigidMass(id) == 0.0) continue;
     const Quat orientation = world.rigidOrientation(id);
     for (const Vec3& p : shapeSurface(world.rigidShape(id), 8).positions) {  // nothing for planes
       const Vec3 q = world.rigidPosition(id) + orientation * p;
@@ -143,31 +143,22 @@ inline std::pair<Vec3, Vec3> sceneBounds(const World& world) {
       high = high.cwiseMax(q);
     }
   }
-  if (!low.allFinite()) return {Vec3(-1, 0, -1), Vec3(1, 1, 1)};  // nothing but planes
   return {low, high};
+}
+
+// The box for framing a scene.
+inline std::pair<Vec3, Vec3> sceneBounds(const World& world) {
+  const auto bounds = bodyBounds(world, false);
+  if (!bounds.first.allFinite()) return {Vec3(-1, 0, -1), Vec3(1, 1, 1)};  // nothing but planes
+  return bounds;
 }
 
 // The box holding what moves: every deformable node and every dynamic rigid body; the scene's
 // bounds when nothing moves.
 inline std::pair<Vec3, Vec3> movingBounds(const World& world) {
-  Vec3 low = Vec3::Constant(INFINITY), high = Vec3::Constant(-INFINITY);
-  for (int d = 0; d < world.deformableCount(); ++d)
-    for (const Vec3& p : world.nodePositions(DeformableId{d})) {
-      low = low.cwiseMin(p);
-      high = high.cwiseMax(p);
-    }
-  for (int b = 0; b < world.rigidBodyCount(); ++b) {
-    const RigidBodyId id{b};
-    if (world.rigidMass(id) == 0.0) continue;
-    const Quat orientation = world.rigidOrientation(id);
-    for (const Vec3& p : shapeSurface(world.rigidShape(id), 8).positions) {
-      const Vec3 q = world.rigidPosition(id) + orientation * p;
-      low = low.cwiseMin(q);
-      high = high.cwiseMax(q);
-    }
-  }
-  if (!low.allFinite()) return sceneBounds(world);
-  return {low, high};
+  const auto bounds = bodyBounds(world, true);
+  if (!bounds.first.allFinite()) return sceneBounds(world);
+  return bounds;
 }
 
 // Keeps what moves in view: the camera turns to look at the middle of what moves and backs off
