@@ -465,8 +465,9 @@ TEST_P(ClothFoldingOnItself, DoesNotPassThroughItself) {
 
 // At z = 2^28 m (2.7e8, past Limits::maxCoordinate) a 1 cm cell index is 2.7e10, past int32: it
 // was converted to int (undefined behaviour; on x86 every z went to one cell). The fold is the
-// same there as at the origin. (At 2^31 m the hash is still exact, see below, but positions
-// resolve 0.48 µm, coarser than the continuous test's 50 nm touch tolerance: 4 faces cross.)
+// same there as at the origin. (At 2^31 m the hash is still exact, see below; positions resolve
+// 0.48 µm there, coarser than the continuous test's 50 nm touch tolerance, which the continuous
+// tests meet by working relative to a local origin: ContinuousFarFromTheOrigin.)
 INSTANTIATE_TEST_SUITE_P(Depths, ClothFoldingOnItself, testing::Values(0.0, 268435456.0),
                          [](const testing::TestParamInfo<double>& param) {
                            return "AtZ" + std::to_string(static_cast<long long>(param.param)) + "Metres";
@@ -503,6 +504,41 @@ TEST(SpatialHash, CellsStayExactFarFromTheOriginAndNonFiniteValuesHaveTheirOwnCe
   grid.visit({0, 0, 0}, 1e300, [&](int32_t item) { found.push_back(item); });
   std::sort(found.begin(), found.end());
   EXPECT_EQ(found, (std::vector<int32_t>{7, 8, 9, 10}));
+}
+
+// A lookup's reach grows with speed × time step: a rope node falling at 50 m/s over a static
+// triangle mesh in 1 s steps looks 100 m around it, 460 cells of the mesh's 0.22 m on a side,
+// 10^8 cells. The hash walked every one of them (12 s per lookup, 7 s per step of such a scene:
+// a fuzz finding); a lookup covering more cells than the hash has entries now visits the entries,
+// each once, so its cost is bounded by the hash's size whatever the reach.
+TEST(SpatialHash, AWideLookupVisitsTheEntriesOnceInsteadOfEveryCell) {
+  // A dish-sized floor: 10 x 10 squares of 0.1 m, 200 triangles, 0.14 m cells.
+  std::vector<Vec3> vertices;
+  std::vector<std::array<int32_t, 3>> triangles;
+  for (int i = 0; i <= 10; ++i)
+    for (int k = 0; k <= 10; ++k) vertices.emplace_back(-0.5 + 0.1 * i, 0.0, -0.5 + 0.1 * k);
+  for (int i = 0; i < 10; ++i)
+    for (int k = 0; k < 10; ++k) {
+      const int32_t corner = i * 11 + k;
+      triangles.push_back({corner, corner + 1, corner + 12});
+      triangles.push_back({corner, corner + 12, corner + 11});
+    }
+  geometry::TriangleGrid grid;
+  grid.build(vertices, triangles);
+  ASSERT_NEAR(grid.cell, std::sqrt(0.02), 1e-12);
+  const size_t entries = grid.entries.size();
+  for (double reach : {10.0, 100.0, 1e4, 1e300}) {
+    std::vector<int> visits(triangles.size(), 0);
+    int total = 0;
+    for (int query = 0; query < 100; ++query)
+      grid.visit(Vec3(0.1, 0.3 + query, 0.0), reach, [&](int32_t item) {
+        ++visits[item];
+        ++total;
+      });
+    // Every entry once per query: no cell walked twice through a colliding hash, none skipped.
+    EXPECT_EQ(total, static_cast<int>(100 * entries)) << "reach " << reach;
+    for (size_t t = 0; t < triangles.size(); ++t) ASSERT_GE(visits[t], 100) << "triangle " << t << ", reach " << reach;
+  }
 }
 
 TEST(Contact, ClothsMeetingHeadOnFastDoNotPassAndKeepMomentum) {

@@ -49,6 +49,56 @@ TEST(Continuous, EdgesCrossingAtTheTimeTheyMeet) {
   EXPECT_FALSE(edgeEdgeImpact({-1, 2, 0.5}, down, {1, 2, 0.5}, down, {0, -1, 0}, kZero, {0, 1, 0}, kZero, 1e-9));
 }
 
+// Far from the origin a coordinate resolves less: at 2^31 m one unit in the last place is
+// 0.48 µm, ten times the touch tolerance the impact zones use for 5 cm features (10^-6 of the
+// cell, 50 nm). The tests work relative to one of the features' points, so the distances they
+// measure at the coplanar time are as exact there as at the origin: every crossing is found.
+class ContinuousFarFromTheOrigin : public testing::TestWithParam<double> {};
+
+TEST_P(ContinuousFarFromTheOrigin, FindsEveryCrossingOfFiveCentimetreFeatures) {
+  const Vec3 origin = Vec3::Constant(GetParam());
+  constexpr double kSize = 0.05, kTolerance = 1e-6 * kSize;
+  std::mt19937 random(13);
+  std::uniform_real_distribution<double> unit(0.0, 1.0), move(-0.5 * kSize, 0.5 * kSize);
+  auto vector = [&] { return Vec3(move(random), move(random), move(random)); };
+  int nodeFaceFound = 0, edgeEdgeFound = 0;
+  constexpr int kCases = 200;
+  for (int i = 0; i < kCases; ++i) {
+    // A face moving a little, and a node that crosses its plane at t0 through a point inside it
+    // (or on an edge, one case in four: the shared edge two faces' tests must both see).
+    const Vec3 a = vector(), b = a + Vec3(kSize, 0, 0) + 0.2 * vector(), c = a + Vec3(0, kSize, 0) + 0.2 * vector();
+    const Vec3 da = 0.1 * vector(), db = da, dc = da;  // a translating face: f is quadratic at most
+    double u = unit(random), v = unit(random);
+    if (u + v > 1) u = 1 - u, v = 1 - v;
+    if (i % 4 == 0) v = 1 - u;  // on edge bc
+    const double t0 = 0.1 + 0.8 * unit(random);
+    const Vec3 normal = (b - a).cross(c - a).normalized();
+    const Vec3 hit = a + t0 * da + u * (b - a) + v * (c - a);  // where the face is at t0
+    const Vec3 dp = 0.4 * kSize * (normal + 0.3 * vector() / kSize).normalized() * (i % 2 ? 1 : -1);
+    const Vec3 p = hit - t0 * dp;
+    const auto t = nodeFaceImpact(origin + p, dp, origin + a, da, origin + b, db, origin + c, dc, kTolerance);
+    if (t && std::abs(*t - t0) < 1e-4) ++nodeFaceFound;  // the inputs rounded: t moves by 2.4e-5
+
+    // An edge crossing another at t0, each at an inner point.
+    const Vec3 q0 = vector(), q1 = q0 + Vec3(kSize, 0.3 * kSize, 0), dq = 0.1 * vector();
+    const Vec3 meet = q0 + t0 * dq + unit(random) * (q1 - q0);
+    const Vec3 direction = Vec3(0.2, 1, 0.1).normalized() * kSize, dr = 0.4 * kSize * Vec3(0.1, -0.2, 1).normalized();
+    const double s = unit(random);
+    const Vec3 r0 = meet - s * direction - t0 * dr, r1 = r0 + direction;
+    const auto te = edgeEdgeImpact(origin + r0, dr, origin + r1, dr, origin + q0, dq, origin + q1, dq, kTolerance);
+    if (te && std::abs(*te - t0) < 1e-4) ++edgeEdgeFound;
+  }
+  EXPECT_EQ(nodeFaceFound, kCases);
+  EXPECT_EQ(edgeEdgeFound, kCases);
+}
+
+// The origin; Limits::maxCoordinate (1e8 m, what validation allows for a scene's positions);
+// 2^31 m, which a scene that validates can still reach (10^4 m/s for 10^7 steps).
+INSTANTIATE_TEST_SUITE_P(Origins, ContinuousFarFromTheOrigin, testing::Values(0.0, 1e8, 2147483648.0),
+                         [](const testing::TestParamInfo<double>& param) {
+                           return "At" + std::to_string(static_cast<long long>(param.param)) + "Metres";
+                         });
+
 // Brute force: the first time on a fine grid at which the node is on the face's plane side
 // change, refined, and on the face. The cubic's roots must agree with it.
 std::optional<double> sampledNodeFaceImpact(const std::array<Vec3, 4>& x, const std::array<Vec3, 4>& d) {
