@@ -28,4 +28,6 @@ export LSAN_OPTIONS=suppressions=$PWD/tests/sanitizer_leaks.supp:print_suppressi
 cd "$build_dir"
 # The paper scenes' 10 s checks take 5+ minutes each under the sanitizers: the soak test runs the
 # same scenes for 2 s instead (TANDEM_SHORT_TESTS), and the determinism test 60 to 150 steps.
-exec ctest --output-on-failure --timeout 900 -j2 -E '^PaperScenes\.' "$@"
+# Packaging (install_*, shared_library_exports: installing and building consumer projects) is the
+# Release suite's; here it would only compile consumers again.
+exec ctest --output-on-failure --timeout 900 -j"$(nproc)" -E '^PaperScenes\.|^install_|^shared_library_' "$@"
