@@ -181,7 +181,9 @@ TEST(Snapshot, ASnapshotOfAWorldThatIsGoneRestoresIntoNoOther) {
     }
     for (int i = 0; i < 4; ++i) {
       World next;
-      if (withBody) ASSERT_TRUE(next.addRigidBody(boxDesc("box", {0.1, 0.1, 0.1}, 1.0, {0, 1, 0})).ok());
+      if (withBody) {
+        ASSERT_TRUE(next.addRigidBody(boxDesc("box", {0.1, 0.1, 0.1}, 1.0, {0, 1, 0})).ok());
+      }
       EXPECT_EQ(next.restore(snapshot).message(), "restore: the snapshot was taken from another world") << withBody;
       EXPECT_EQ(next.stepCount(), 0);
     }
