@@ -86,6 +86,10 @@ struct World::Impl final : bullet::SolverHooks {
       fixedPointSlots{"fixed point"}, grabSlots{"grab"};
   mutable std::string lookupError;  // the first bad id a query met (World::takeLookupError)
   uint64_t rigidStructureVersion = 0;  // changes as rigid bodies and joints come and go (snapshots check it)
+  // This world among all made in the process: a snapshot names the world it came from by this, not
+  // by address (a world made after another is gone may sit at the same address).
+  const uint64_t serial = nextSerial();
+  static uint64_t nextSerial();
 
   NodeArrays nodes;
   std::vector<DeformableRecord> deformables;

@@ -11,10 +11,12 @@
 
 #include "bullet/bullet_world_impl.h"
 
+#include <atomic>
+
 namespace tandem {
 
 struct WorldSnapshot::Data {
-  const void* world = nullptr;  // the Impl it was taken from
+  uint64_t world = 0;  // the serial of the world it was taken from
   uint64_t rigidStructureVersion = 0;
   WorldSettings settings;
   NodeArrays nodes;
@@ -32,6 +34,11 @@ struct WorldSnapshot::Data {
   std::unique_ptr<bullet::BulletWorld::State> bullet;
 };
 
+uint64_t World::Impl::nextSerial() {
+  static std::atomic<uint64_t> serials{0};
+  return ++serials;
+}
+
 WorldSnapshot::WorldSnapshot() = default;
 WorldSnapshot::~WorldSnapshot() = default;
 WorldSnapshot::WorldSnapshot(WorldSnapshot&&) noexcept = default;
@@ -44,7 +51,7 @@ int64_t WorldSnapshot::stepCount() const { return m_data ? m_data->steps : 0; }
 WorldSnapshot World::snapshot() const {
   const Impl& w = *m_impl;
   auto data = std::make_unique<WorldSnapshot::Data>();
-  data->world = &w;
+  data->world = w.serial;
   data->rigidStructureVersion = w.rigidStructureVersion;
   data->settings = w.settings;
   data->nodes = w.nodes;
@@ -72,7 +79,7 @@ Status World::restore(const WorldSnapshot& snapshot) {
   Impl& w = *m_impl;
   const WorldSnapshot::Data* data = snapshot.data();
   if (!data) return Error{"restore: the snapshot is empty"};
-  if (data->world != &w) return Error{"restore: the snapshot was taken from another world"};
+  if (data->world != w.serial) return Error{"restore: the snapshot was taken from another world"};
   if (data->rigidStructureVersion != w.rigidStructureVersion)
     return Error{"restore: rigid bodies or joints were added or removed since the snapshot was taken"};
   w.settings = data->settings;

@@ -164,5 +164,31 @@ TEST(Snapshot, RestoreBringsBackRemovedDeformablesAndRefusesWhatItCannot) {
             "restore: rigid bodies or joints were added or removed since the snapshot was taken");
 }
 
+// A world made after another is gone may sit at the same address (the allocator hands the freed
+// memory back: an empty world's state is the first thing a new world allocates): the snapshot
+// of the first still names the first, and the new world refuses it rather than restoring a
+// stranger's state.
+TEST(Snapshot, ASnapshotOfAWorldThatIsGoneRestoresIntoNoOther) {
+  for (bool withBody : {false, true}) {
+    WorldSnapshot snapshot;
+    {
+      World first;
+      if (withBody) {
+        ASSERT_TRUE(first.addRigidBody(boxDesc("box", {0.1, 0.1, 0.1}, 1.0, {0, 1, 0})).ok());
+        ASSERT_TRUE(first.step(kStep).ok());
+      }
+      snapshot = first.snapshot();
+    }
+    for (int i = 0; i < 4; ++i) {
+      World next;
+      if (withBody) {
+        ASSERT_TRUE(next.addRigidBody(boxDesc("box", {0.1, 0.1, 0.1}, 1.0, {0, 1, 0})).ok());
+      }
+      EXPECT_EQ(next.restore(snapshot).message(), "restore: the snapshot was taken from another world") << withBody;
+      EXPECT_EQ(next.stepCount(), 0);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace tandem

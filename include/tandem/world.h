@@ -511,8 +511,10 @@ class TANDEM_API World {
   // impulse, grabs' and fixed points' targets, settings, time. restore() puts it back: stepping
   // on from there repeats, bit for bit, what stepping on from the snapshot did (see
   // docs/architecture.md for the one Bullet state that is rebuilt rather than copied).
-  // A snapshot restores only into the world it was taken from, and only while that world holds
-  // the same things (adding or removing anything since makes restore refuse).
+  // A snapshot restores only into the world it was taken from (not into another world, even one
+  // made later at the same address), and only while that world holds the same rigid bodies and
+  // joints (adding or removing one since makes restore refuse). Deformables, anchors, fixed points
+  // and grabs removed since come back; those added since go, and their ids are refused.
   WorldSnapshot snapshot() const;
   Status restore(const WorldSnapshot& snapshot);
 

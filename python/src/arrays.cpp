@@ -1,4 +1,4 @@
-// Lists of vectors and index tuples as NumPy arrays, checked on the way in.
+// Lists of vectors and index tuples as NumPy arrays, and collision bit sets, checked on the way in.
 #include "bindings.h"
 
 namespace tandem::python {
@@ -54,6 +54,13 @@ std::vector<double> toDoubles(const py::handle& source, const char* what) {
     throw py::value_error(std::string(what) + ": expected a 1-D array of numbers" +
                           (array ? ", got shape " + shapeText(array) : std::string()));
   return std::vector<double>(array.data(), array.data() + array.size());
+}
+
+uint32_t toCollisionBits(int64_t value, const char* what) {
+  if (value < 0 || value > static_cast<int64_t>(UINT32_MAX))
+    throw py::value_error(std::string(what) + " must be in [0, 2**32) (a set of 32 bits; tandem.ALL_COLLISION_GROUPS "
+                          "is every group), got " + std::to_string(value));
+  return static_cast<uint32_t>(value);
 }
 
 template <size_t K>

@@ -63,7 +63,16 @@ void bindDeformable(py::module_& module) {
   collision.def_readwrite("enabled", &CollisionSettings::enabled, "Against rigid bodies and other deformables.")
       .def_readwrite("self_collision", &CollisionSettings::selfCollision, "Against itself.")
       .def_readwrite("thickness", &CollisionSettings::thickness, "m kept between the surface and what it touches.")
-      .def_readwrite("friction", &CollisionSettings::friction, "mu; a contact's mu is the product of both sides'.");
+      .def_readwrite("friction", &CollisionSettings::friction, "mu; a contact's mu is the product of both sides'.")
+      .def_property(
+          "group", [](const CollisionSettings& c) { return c.group; },
+          [](CollisionSettings& c, int64_t group) { c.group = toCollisionBits(group, "CollisionSettings.group"); },
+          "The groups the surface is in, a set of 32 bits (default DEFAULT_COLLISION_GROUP); see "
+          "collision_groups_meet.")
+      .def_property(
+          "mask", [](const CollisionSettings& c) { return c.mask; },
+          [](CollisionSettings& c, int64_t mask) { c.mask = toCollisionBits(mask, "CollisionSettings.mask"); },
+          "The groups it collides with (default ALL_COLLISION_GROUPS).");
 
   py::class_<DeformableDesc> desc(module, "DeformableDesc",
                                   "Everything World.add_deformable needs; set fields by keyword: "

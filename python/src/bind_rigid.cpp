@@ -81,16 +81,64 @@ void bindRigid(py::module_& module) {
       .def_readwrite("friction", &RigidBodyDesc::friction, "Friction coefficient.")
       .def_readwrite("restitution", &RigidBodyDesc::restitution, "Restitution coefficient.")
       .def_readwrite("can_sleep", &RigidBodyDesc::canSleep,
-                     "Whether Bullet may put it to sleep after 2 s at rest (then it reports no contact forces).");
+                     "Whether Bullet may put it to sleep after 2 s at rest (then it reports no contact forces).")
+      .def_property(
+          "collision_group", [](const RigidBodyDesc& d) { return d.collisionGroup; },
+          [](RigidBodyDesc& d, int64_t group) { d.collisionGroup = toCollisionBits(group, "RigidBodyDesc.collision_group"); },
+          "The groups it is in, a set of 32 bits (default DEFAULT_COLLISION_GROUP); see collision_groups_meet.")
+      .def_property(
+          "collision_mask", [](const RigidBodyDesc& d) { return d.collisionMask; },
+          [](RigidBodyDesc& d, int64_t mask) { d.collisionMask = toCollisionBits(mask, "RigidBodyDesc.collision_mask"); },
+          "The groups it collides with (default ALL_COLLISION_GROUPS).");
 
   py::class_<HingeDesc> hinge(module, "HingeDesc",
                               "A revolute joint about `axis` through `pivot` (world frame, at creation) between "
-                              "body_a and body_b, or body_a and the world when body_b is None.");
+                              "body_a and body_b, or body_a and the world when body_b is None. Its angle is body_a's "
+                              "rotation about the axis relative to body_b (or the world) since it was made, "
+                              "right-handed about the axis; limits keep it in [lower_limit, upper_limit], a motor "
+                              "drives its speed.");
   defKeywordInit<HingeDesc>(hinge);
   hinge.def_readwrite("body_a", &HingeDesc::bodyA, "A RigidBodyId.")
       .def_readwrite("body_b", &HingeDesc::bodyB, "A RigidBodyId, or None for the world.")
       .def_readwrite("pivot", &HingeDesc::pivot, "World frame (m).")
-      .def_readwrite("axis", &HingeDesc::axis, "World frame.");
+      .def_readwrite("axis", &HingeDesc::axis, "World frame.")
+      .def_readwrite("lower_limit", &HingeDesc::lowerLimit,
+                     "rad, in [-pi, pi]; lower_limit > upper_limit (the default 1 > -1) is no limit.")
+      .def_readwrite("upper_limit", &HingeDesc::upperLimit, "rad, in [-pi, pi].")
+      .def_readwrite("motor", &HingeDesc::motor, "Whether a motor drives the hinge's speed.")
+      .def_readwrite("motor_target_speed", &HingeDesc::motorTargetSpeed, "rad/s.")
+      .def_readwrite("motor_max_torque", &HingeDesc::motorMaxTorque, "N*m, >= 0: the most the motor applies.");
+
+  py::class_<RigidContact>(module, "RigidContact",
+                           "A contact point between two rigid bodies (Bullet's) in the last step. Impulses are on "
+                           "body_a; body_b got the opposite.")
+      .def_readonly("body_a", &RigidContact::bodyA, "A RigidBodyId.")
+      .def_readonly("body_b", &RigidContact::bodyB, "A RigidBodyId.")
+      .def_readonly("point_on_a", &RigidContact::pointOnA, "World frame (m).")
+      .def_readonly("point_on_b", &RigidContact::pointOnB, "World frame (m).")
+      .def_readonly("normal", &RigidContact::normal, "From B to A.")
+      .def_readonly("distance", &RigidContact::distance, "m, negative when penetrating.")
+      .def_readonly("normal_impulse", &RigidContact::normalImpulse, "N*s, >= 0.")
+      .def_readonly("friction_impulse", &RigidContact::frictionImpulse, "N*s, tangential.")
+      .def(
+          "to_dict",
+          [](const RigidContact& c) {
+            py::dict d;
+            d["body_a"] = c.bodyA.index;
+            d["body_b"] = c.bodyB.index;
+            d["point_on_a"] = c.pointOnA;
+            d["point_on_b"] = c.pointOnB;
+            d["normal"] = c.normal;
+            d["distance"] = c.distance;
+            d["normal_impulse"] = c.normalImpulse;
+            d["friction_impulse"] = c.frictionImpulse;
+            return d;
+          },
+          "The contact as a dict (ids as indices).")
+      .def("__repr__", [](const RigidContact& c) {
+        return "RigidContact(body_a=" + std::to_string(c.bodyA.index) + ", body_b=" + std::to_string(c.bodyB.index) +
+               ", normal_impulse=" + std::to_string(c.normalImpulse) + ")";
+      });
 
   py::class_<FixedJointDesc> fixed(module, "FixedJointDesc",
                                    "Holds body_a to body_b (or to the world when None) in their pose at creation.");

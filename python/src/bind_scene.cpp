@@ -21,7 +21,7 @@ namespace {
 
 void buildInto(const Scene& scene, const py::object& worldObject) {
   PythonWorld& world = worldObject.cast<PythonWorld&>();
-  world.checkNoLiveViews("build_scene");
+  world.nodeArraysChanging("build_scene");
   check(buildScene(scene, world.world()));
 }
 
@@ -63,7 +63,8 @@ void bindSceneParts(py::module_& module) {
   py::class_<SceneRigidBody> rigid(module, "SceneRigidBody", "A scene's rigid body.");
   defKeywordInit<SceneRigidBody>(rigid);
   rigid.def_readwrite("desc", &SceneRigidBody::desc, "Its RigidBodyDesc (changed in place).")
-      .def_readwrite("shape_file", &SceneRigidBody::shapeFile, "The OBJ a hull or mesh shape came from, as written.");
+      .def_readwrite("shape_file", &SceneRigidBody::shapeFile, "The OBJ a hull or mesh shape came from, as written.")
+      .def_readwrite("colour", &SceneRigidBody::colour, "(r, g, b) in [0, 1] as displayed, or None: the palette.");
 
   py::class_<SceneJoint> joint(module, "SceneJoint", "A scene's hinge or fixed joint, bodies by name.");
   py::enum_<SceneJoint::Kind>(joint, "Kind").value("HINGE", SceneJoint::Kind::Hinge).value("FIXED", SceneJoint::Kind::Fixed);
@@ -72,7 +73,12 @@ void bindSceneParts(py::module_& module) {
       .def_readwrite("body_a", &SceneJoint::bodyA, "Name of the first body.")
       .def_readwrite("body_b", &SceneJoint::bodyB, "Name of the second body, or None for the world.")
       .def_readwrite("pivot", &SceneJoint::pivot, "Hinge: world frame (m).")
-      .def_readwrite("axis", &SceneJoint::axis, "Hinge: world frame.");
+      .def_readwrite("axis", &SceneJoint::axis, "Hinge: world frame.")
+      .def_readwrite("lower_limit", &SceneJoint::lowerLimit, "Hinge: rad; lower_limit > upper_limit is no limit.")
+      .def_readwrite("upper_limit", &SceneJoint::upperLimit, "Hinge: rad.")
+      .def_readwrite("motor", &SceneJoint::motor, "Hinge: whether a motor drives it.")
+      .def_readwrite("motor_target_speed", &SceneJoint::motorTargetSpeed, "Hinge: rad/s.")
+      .def_readwrite("motor_max_torque", &SceneJoint::motorMaxTorque, "Hinge: N*m.");
 
   py::class_<SceneFixedNodes> fixedNodes(module, "SceneFixedNodes",
                                          "Nodes of a scene deformable held where they start: listed, or inside a box.");
@@ -89,7 +95,8 @@ void bindSceneParts(py::module_& module) {
       .def_readwrite("mass", &SceneDeformable::mass, "Total mass (kg), or None when density is given.")
       .def_readwrite("density", &SceneDeformable::density, "kg/m^3, kg/m^2 or kg/m, or None when mass is given.")
       .def_readwrite("initial_velocity", &SceneDeformable::initialVelocity, "m/s, every node.")
-      .def_readwrite("fixed", &SceneDeformable::fixed, "SceneFixedNodes list.");
+      .def_readwrite("fixed", &SceneDeformable::fixed, "SceneFixedNodes list.")
+      .def_readwrite("colour", &SceneDeformable::colour, "(r, g, b) in [0, 1] as displayed, or None: the palette.");
 
   py::class_<SceneAnchor> anchor(module, "SceneAnchor",
                                  "A scene's anchor: a node (by index or nearest a point) or a face point, held to a body.");
@@ -176,7 +183,7 @@ void bindScene(py::module_& module) {
         const BuiltinScene* builtin = findBuiltinScene(name);
         if (!builtin) throw LibraryError("no built-in scene named '" + name + "'");
         PythonWorld& world = worldObject.cast<PythonWorld&>();
-        world.checkNoLiveViews("build_builtin_scene");
+        world.nodeArraysChanging("build_builtin_scene");
         check(builtin->build(world.world()));
         return builtin->timeStep;
       },

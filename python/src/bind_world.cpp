@@ -28,7 +28,7 @@ void bindBuilding(py::class_<Self>& cls) {
       .def(
           "add_deformable",
           [](Self& w, const DeformableDesc& d) {
-            w.checkNoLiveViews("add_deformable");
+            w.nodeArraysChanging("add_deformable");
             return unwrap(w.world().addDeformable(d));
           },
           py::arg("desc"),
@@ -37,7 +37,7 @@ void bindBuilding(py::class_<Self>& cls) {
       .def(
           "add_fixed_point",
           [](Self& w, DeformableId body, int32_t node, const std::optional<Vec3>& target, double maxForce) {
-            w.checkedDeformable(body, "add_fixed_point");
+            w.checked(body, "add_fixed_point");
             // None: where the node is now (a bad node index is left for the world to name).
             const std::span<const Vec3> nodes = w.world().nodePositions(body);
             const bool inRange = node >= 0 && node < static_cast<int32_t>(nodes.size());
@@ -48,63 +48,56 @@ void bindBuilding(py::class_<Self>& cls) {
           "Holds a node at target (m; None: where it is now) with at most max_force (N); returns a FixedPointId.")
       .def(
           "set_fixed_point_target",
-          [](Self& w, FixedPointId id, const Vec3& target) { check(w.world().setFixedPointTarget(id, target)); },
+          [](Self& w, FixedPointId id, const Vec3& target) { w.check(w.world().setFixedPointTarget(id, target), id); },
           py::arg("fixed_point"), py::arg("target"), "Moves a fixed point's target (a kinematic target, m).")
       .def(
           "add_anchor", [](Self& w, const AnchorDesc& d) { return unwrap(w.world().addAnchor(d)); }, py::arg("desc"),
           "Holds a point of a deformable to a point of a rigid body (AnchorDesc); returns an AnchorId.")
       .def(
           "add_grab",
-          [](Self& w, const GrabDesc& d) {
-            GrabId id = unwrap(w.world().addGrab(d));
-            w.grabAdded(id);
-            return id;
-          },
+          [](Self& w, const GrabDesc& d) { return unwrap(w.world().addGrab(d)); },
           py::arg("desc"), "Starts pulling a point towards a target (GrabDesc); returns a GrabId.")
       .def(
           "set_grab_target",
-          [](Self& w, GrabId id, const Vec3& target) { check(w.world().setGrabTarget(id, target)); },
+          [](Self& w, GrabId id, const Vec3& target) { w.check(w.world().setGrabTarget(id, target), id); },
           py::arg("grab"), py::arg("target"), "Moves a grab's target (m).")
       .def(
           "remove_grab",
-          [](Self& w, GrabId id) {
-            check(w.world().removeGrab(id));
-            w.grabRemoved(id);
-          },
-          py::arg("grab"), "Lets go; the id may be reused by the next grab.")
+          [](Self& w, GrabId id) { w.check(w.world().removeGrab(id), id); }, py::arg("grab"),
+          "Lets go; the id is refused from then on (tandem.IdError).")
       .def(
           "set_node_velocity",
           [](Self& w, DeformableId body, int32_t node, const Vec3& v) {
-            check(w.world().setNodeVelocity(w.checkedDeformable(body, "set_node_velocity"), node, v));
+            check(w.world().setNodeVelocity(w.checked(body, "set_node_velocity"), node, v));
           },
           py::arg("deformable"), py::arg("node"), py::arg("velocity"), "Sets a node's velocity (m/s).")
       .def(
           "set_node_position",
           [](Self& w, DeformableId body, int32_t node, const Vec3& p) {
-            check(w.world().setNodePosition(w.checkedDeformable(body, "set_node_position"), node, p));
+            check(w.world().setNodePosition(w.checked(body, "set_node_position"), node, p));
           },
           py::arg("deformable"), py::arg("node"), py::arg("position"),
           "Moves a node (a teleport: no velocity, no collision on the way); its rest shape is unchanged.")
       .def(
           "fix_node",
           [](Self& w, DeformableId body, int32_t node) {
-            check(w.world().fixNode(w.checkedDeformable(body, "fix_node"), node));
+            check(w.world().fixNode(w.checked(body, "fix_node"), node));
           },
           py::arg("deformable"), py::arg("node"), "Pins a node where it is: its inverse mass becomes zero.")
       .def(
           "put_rigid_to_sleep",
-          [](Self& w, RigidBodyId id) { check(w.world().putRigidToSleep(w.checkedRigid(id, "put_rigid_to_sleep"))); },
+          [](Self& w, RigidBodyId id) { check(w.world().putRigidToSleep(w.checked(id, "put_rigid_to_sleep"))); },
           py::arg("body"), "Puts a rigid body to sleep.")
       .def(
           "set_rigid_can_sleep",
           [](Self& w, RigidBodyId id, bool canSleep) {
-            check(w.world().setRigidCanSleep(w.checkedRigid(id, "set_rigid_can_sleep"), canSleep));
+            check(w.world().setRigidCanSleep(w.checked(id, "set_rigid_can_sleep"), canSleep));
           },
           py::arg("body"), py::arg("can_sleep"), "Lets Bullet put the body to sleep, or not.")
       .def(
           "set_kinematic_target",
           [](Self& w, RigidBodyId id, const Vec3& position, const Quat& orientation) {
-            check(w.world().setKinematicTarget(id, position, orientation));
+            w.check(w.world().setKinematicTarget(id, position, orientation), id);
           },
           py::arg("body"), py::arg("position"), py::arg("orientation") = Quat::Identity(),
           "Moves a kinematic body to this pose (orientation (w, x, y, z)) by the end of the next step.");
@@ -112,82 +105,83 @@ void bindBuilding(py::class_<Self>& cls) {
 
 void bindRigidQueries(py::class_<Self>& cls) {
   cls.def_property_readonly(
-         "rigid_body_count", [](const Self& w) { return w.world().rigidBodyCount(); }, "Number of rigid bodies.")
+         "rigid_body_count", [](const Self& w) { return w.world().rigidBodyCount(); },
+         "Number of rigid bodies the world holds (removed ones not counted).")
       .def(
           "find_rigid_body", [](const Self& w, std::string_view name) { return w.world().findRigidBody(name); },
           py::arg("name"), "The RigidBodyId of the body with this name, or None.")
       .def(
-          "rigid_name", [](const Self& w, RigidBodyId id) { return w.world().rigidName(w.checkedRigid(id, "rigid_name")); },
+          "rigid_name", [](const Self& w, RigidBodyId id) { return w.world().rigidName(w.checked(id, "rigid_name")); },
           py::arg("body"), "The body's name.")
       .def(
           "rigid_position",
-          [](const Self& w, RigidBodyId id) { return w.world().rigidPosition(w.checkedRigid(id, "rigid_position")); },
+          [](const Self& w, RigidBodyId id) { return w.world().rigidPosition(w.checked(id, "rigid_position")); },
           py::arg("body"), "Centre of mass, world frame (m): a (3,) array.")
       .def(
           "rigid_orientation",
           [](const Self& w, RigidBodyId id) {
-            return w.world().rigidOrientation(w.checkedRigid(id, "rigid_orientation"));
+            return w.world().rigidOrientation(w.checked(id, "rigid_orientation"));
           },
           py::arg("body"), "Orientation quaternion (w, x, y, z): a (4,) array.")
       .def(
-          "rigid_pose", [](const Self& w, RigidBodyId id) { return poseMatrix(w.world(), w.checkedRigid(id, "rigid_pose")); },
+          "rigid_pose", [](const Self& w, RigidBodyId id) { return poseMatrix(w.world(), w.checked(id, "rigid_pose")); },
           py::arg("body"), "The body's pose as a 4x4 homogeneous matrix (rotation, then position in the last column).")
       .def(
           "rigid_linear_velocity",
           [](const Self& w, RigidBodyId id) {
-            return w.world().rigidLinearVelocity(w.checkedRigid(id, "rigid_linear_velocity"));
+            return w.world().rigidLinearVelocity(w.checked(id, "rigid_linear_velocity"));
           },
           py::arg("body"), "m/s: a (3,) array.")
       .def(
           "rigid_angular_velocity",
           [](const Self& w, RigidBodyId id) {
-            return w.world().rigidAngularVelocity(w.checkedRigid(id, "rigid_angular_velocity"));
+            return w.world().rigidAngularVelocity(w.checked(id, "rigid_angular_velocity"));
           },
           py::arg("body"), "rad/s, world frame: a (3,) array.")
       .def(
-          "rigid_mass", [](const Self& w, RigidBodyId id) { return w.world().rigidMass(w.checkedRigid(id, "rigid_mass")); },
+          "rigid_mass", [](const Self& w, RigidBodyId id) { return w.world().rigidMass(w.checked(id, "rigid_mass")); },
           py::arg("body"), "kg; 0 for static and kinematic bodies.")
       .def(
           "rigid_inertia",
-          [](const Self& w, RigidBodyId id) { return w.world().rigidInertia(w.checkedRigid(id, "rigid_inertia")); },
+          [](const Self& w, RigidBodyId id) { return w.world().rigidInertia(w.checked(id, "rigid_inertia")); },
           py::arg("body"), "kg*m^2, world frame, about the centre of mass: a 3x3 array (0 if not dynamic).")
       .def(
           "rigid_is_awake",
-          [](const Self& w, RigidBodyId id) { return w.world().rigidIsAwake(w.checkedRigid(id, "rigid_is_awake")); },
+          [](const Self& w, RigidBodyId id) { return w.world().rigidIsAwake(w.checked(id, "rigid_is_awake")); },
           py::arg("body"), "Whether Bullet has the body awake.")
       .def(
           "rigid_shape",
-          [](const Self& w, RigidBodyId id) { return w.world().rigidShape(w.checkedRigid(id, "rigid_shape")); },
+          [](const Self& w, RigidBodyId id) { return w.world().rigidShape(w.checked(id, "rigid_shape")); },
           py::arg("body"), "The RigidShape the body was made with (a copy).")
       .def(
           "rigid_contact_impulse",
           [](const Self& w, RigidBodyId a, RigidBodyId b) {
-            return w.world().rigidContactImpulse(w.checkedRigid(a, "rigid_contact_impulse"),
-                                                 w.checkedRigid(b, "rigid_contact_impulse"));
+            return w.world().rigidContactImpulse(w.checked(a, "rigid_contact_impulse"),
+                                                 w.checked(b, "rigid_contact_impulse"));
           },
           py::arg("a"), py::arg("b"), "Sum of Bullet's normal contact impulses between two rigid bodies, last step (N*s).")
       .def(
           "deformable_impulse_on_rigid",
           [](const Self& w, RigidBodyId id) {
-            return w.world().deformableImpulseOnRigid(w.checkedRigid(id, "deformable_impulse_on_rigid"));
+            return w.world().deformableImpulseOnRigid(w.checked(id, "deformable_impulse_on_rigid"));
           },
           py::arg("body"), "Total impulse Tandem's rows put on the body in the last step (N*s).")
       .def(
           "deformable_angular_impulse_on_rigid",
           [](const Self& w, RigidBodyId id) {
-            return w.world().deformableAngularImpulseOnRigid(w.checkedRigid(id, "deformable_angular_impulse_on_rigid"));
+            return w.world().deformableAngularImpulseOnRigid(w.checked(id, "deformable_angular_impulse_on_rigid"));
           },
           py::arg("body"), "Angular impulse about the centre of mass from Tandem's rows, last step (N*m*s).")
       .def(
           "deformable_force_on_rigid",
           [](const Self& w, RigidBodyId id) {
-            return w.world().deformableForceOnRigid(w.checkedRigid(id, "deformable_force_on_rigid"));
+            return w.world().deformableForceOnRigid(w.checked(id, "deformable_force_on_rigid"));
           },
           py::arg("body"), "The same impulse as a mean force over the last step (N).")
       .def(
           "deformable_torque_on_rigid",
           [](const Self& w, RigidBodyId id) {
-            return w.world().deformableTorqueOnRigid(w.checkedRigid(id, "deformable_torque_on_rigid"));
+            return w.world().deformableTorqueOnRigid(w.checked(id, "deformable_torque_on_rigid"));
           },
           py::arg("body"), "The angular impulse as a mean torque over the last step (N*m).");
 }
@@ -200,13 +194,13 @@ void bindDeformableQueries(py::class_<Self>& cls) {
           py::arg("name"), "The DeformableId of the deformable with this name, or None.")
       .def(
           "deformable_name",
-          [](const Self& w, DeformableId id) { return w.world().deformableName(w.checkedDeformable(id, "deformable_name")); },
+          [](const Self& w, DeformableId id) { return w.world().deformableName(w.checked(id, "deformable_name")); },
           py::arg("deformable"), "The deformable's name.")
       .def(
           "node_positions",
           [](const py::object& self, DeformableId id) {
             const Self& w = self.cast<const Self&>();
-            return Self::viewOf(self, w.world().nodePositions(w.checkedDeformable(id, "node_positions")));
+            return Self::viewOf(self, w.world().nodePositions(w.checked(id, "node_positions")));
           },
           py::arg("deformable"),
           "The nodes' positions (m) as a read-only (N, 3) view of the world's own memory: no copy, it changes "
@@ -216,42 +210,38 @@ void bindDeformableQueries(py::class_<Self>& cls) {
           "node_velocities",
           [](const py::object& self, DeformableId id) {
             const Self& w = self.cast<const Self&>();
-            return Self::viewOf(self, w.world().nodeVelocities(w.checkedDeformable(id, "node_velocities")));
+            return Self::viewOf(self, w.world().nodeVelocities(w.checked(id, "node_velocities")));
           },
           py::arg("deformable"), "The nodes' velocities (m/s) as a read-only (N, 3) view, like node_positions.")
       .def(
           "node_inverse_masses",
           [](const py::object& self, DeformableId id) {
             const Self& w = self.cast<const Self&>();
-            return Self::viewOf(self, w.world().nodeInverseMasses(w.checkedDeformable(id, "node_inverse_masses")));
+            return Self::viewOf(self, w.world().nodeInverseMasses(w.checked(id, "node_inverse_masses")));
           },
           py::arg("deformable"), "The nodes' inverse masses (1/kg; 0 for pinned nodes) as a read-only (N,) view.")
       .def(
           "rest_mesh",
-          [](const Self& w, DeformableId id) { return w.world().restMesh(w.checkedDeformable(id, "rest_mesh")); },
+          [](const Self& w, DeformableId id) { return w.world().restMesh(w.checked(id, "rest_mesh")); },
           py::arg("deformable"), "The DeformableMesh as added (a copy).")
       .def(
           "fixed_point_impulse",
           [](const Self& w, FixedPointId id) {
-            if (!w.world().contains(id))
-              throw py::index_error("fixed_point_impulse: no fixed point with id " + std::to_string(id.index));
-            return w.world().fixedPointImpulse(id);
+            return w.world().fixedPointImpulse(w.checked(id, "fixed_point_impulse"));
           },
           py::arg("fixed_point"), "Impulse on the node in the last step (N*s).")
       .def(
           "anchor_state",
           [](const Self& w, AnchorId id) {
-            if (!w.world().contains(id))
-              throw py::index_error("anchor_state: no anchor with id " + std::to_string(id.index));
-            return w.world().anchorState(id);
+            return w.world().anchorState(w.checked(id, "anchor_state"));
           },
           py::arg("anchor"), "The AnchorState after the last step: impulse and both points.")
       .def(
           "grab_impulse",
-          [](const Self& w, GrabId id) { return w.world().grabImpulse(w.checkedGrab(id, "grab_impulse")); },
+          [](const Self& w, GrabId id) { return w.world().grabImpulse(w.checked(id, "grab_impulse")); },
           py::arg("grab"), "Impulse on the grabbed point in the last step (N*s).")
       .def(
-          "grab_point", [](const Self& w, GrabId id) { return w.world().grabPoint(w.checkedGrab(id, "grab_point")); },
+          "grab_point", [](const Self& w, GrabId id) { return w.world().grabPoint(w.checked(id, "grab_point")); },
           py::arg("grab"), "Where the grabbed point is now (m).")
       .def(
           "contacts", [](const Self& w) { return w.world().contacts(); },
@@ -316,6 +306,7 @@ void bindWorld(py::module_& module) {
   bindRigidQueries(cls);
   bindDeformableQueries(cls);
   bindStepping(cls);
+  bindWorldEditing(module, cls);
 }
 
 }  // namespace tandem::python

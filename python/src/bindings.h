@@ -51,6 +51,13 @@ class LibraryError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// An id the world does not hold (never made, or stale: what it named was removed), on its way to
+// Python as tandem.IdError, which is both a tandem.Error and an IndexError.
+class IdError : public LibraryError {
+ public:
+  using LibraryError::LibraryError;
+};
+
 inline void check(const Status& status) {
   if (!status) throw LibraryError(status.message());
 }
@@ -94,6 +101,8 @@ template <size_t K>
 py::array_t<int32_t> toArray(const std::vector<std::array<int32_t, K>>& tuples);
 template <size_t K>
 std::vector<std::array<int32_t, K>> toIndexTuples(const py::handle& array, const char* what);
+// A collision group or mask from Python: an int in [0, 2**32), else a ValueError naming `what`.
+uint32_t toCollisionBits(int64_t value, const char* what);
 
 // Each file binds one part of the API.
 void bindErrors(py::module_& module);

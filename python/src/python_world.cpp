@@ -5,42 +5,39 @@
 namespace tandem::python {
 namespace {
 
-std::string missing(const char* what, const char* kind, int32_t index, int count) {
-  return std::string(what) + ": no " + kind + " with id " + std::to_string(index) + " (the world has " +
-         std::to_string(count) + ")";
-}
-
 void makeReadOnly(py::array& view) {
   py::detail::array_proxy(view.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
 }
 
+// What a query recorded about a bad id (World::takeLookupError), after clearing any older record.
+template <class Query>
+std::string recordedLookupError(const World& world, Query query) {
+  (void)world.takeLookupError();
+  query();
+  return world.takeLookupError().message();
+}
+
 }  // namespace
 
-RigidBodyId PythonWorld::checkedRigid(RigidBodyId id, const char* what) const {
-  if (id.index < 0 || id.index >= m_world.rigidBodyCount())
-    throw py::index_error(missing(what, "rigid body", id.index, m_world.rigidBodyCount()));
-  return id;
+// Each asks a cheap query with the bad id, which records the library's words for it.
+std::string PythonWorld::lookupMessage(RigidBodyId id) const {
+  return recordedLookupError(m_world, [&] { (void)m_world.rigidMass(id); });
 }
-
-DeformableId PythonWorld::checkedDeformable(DeformableId id, const char* what) const {
-  if (id.index < 0 || id.index >= m_world.deformableCount())
-    throw py::index_error(missing(what, "deformable", id.index, m_world.deformableCount()));
-  return id;
+std::string PythonWorld::lookupMessage(DeformableId id) const {
+  return recordedLookupError(m_world, [&] { (void)m_world.deformableName(id); });
 }
-
-GrabId PythonWorld::checkedGrab(GrabId id, const char* what) const {
-  if (id.index < 0 || id.index >= static_cast<int32_t>(m_liveGrabs.size()) || !m_liveGrabs[id.index])
-    throw py::index_error(std::string(what) + ": no grab with id " + std::to_string(id.index) +
-                          " (never added, or removed)");
-  return id;
+std::string PythonWorld::lookupMessage(JointId id) const {
+  return recordedLookupError(m_world, [&] { (void)m_world.hingeAngle(id); });
 }
-
-void PythonWorld::grabAdded(GrabId id) {
-  if (id.index >= static_cast<int32_t>(m_liveGrabs.size())) m_liveGrabs.resize(id.index + 1, false);
-  m_liveGrabs[id.index] = true;
+std::string PythonWorld::lookupMessage(AnchorId id) const {
+  return recordedLookupError(m_world, [&] { (void)m_world.anchorState(id); });
 }
-
-void PythonWorld::grabRemoved(GrabId id) { m_liveGrabs[id.index] = false; }
+std::string PythonWorld::lookupMessage(FixedPointId id) const {
+  return recordedLookupError(m_world, [&] { (void)m_world.fixedPointImpulse(id); });
+}
+std::string PythonWorld::lookupMessage(GrabId id) const {
+  return recordedLookupError(m_world, [&] { (void)m_world.grabImpulse(id); });
+}
 
 py::array PythonWorld::viewOf(const py::object& owner, std::span<const Vec3> vectors) {
   static_assert(sizeof(Vec3) == 3 * sizeof(double), "node positions must be packed triples of doubles");
@@ -71,8 +68,33 @@ void PythonWorld::checkNoLiveViews(const char* what) {
   if (m_views.empty()) return;
   throw LibraryError(std::string(what) + ": " + std::to_string(m_views.size()) +
                      " NumPy view(s) of this world's nodes (from node_positions, node_velocities or "
-                     "node_inverse_masses) are still alive, and adding a deformable may move the storage they "
+                     "node_inverse_masses) are still alive, and this may move the storage they "
                      "point into. Copy what you want to keep (numpy.array(view)) and delete the views first");
+}
+
+void PythonWorld::nodeArraysChanging(const char* what) {
+  checkNoLiveViews(what);
+  m_nodeLayout = m_nextNodeLayout++;
+}
+
+std::unique_ptr<PythonSnapshot> PythonWorld::snapshot() const {
+  auto taken = std::make_unique<PythonSnapshot>();
+  taken->snapshot = m_world.snapshot();
+  taken->world = m_serial;
+  taken->nodeLayout = m_nodeLayout;
+  return taken;
+}
+
+void PythonWorld::restore(const PythonSnapshot& snapshot) {
+  // Another world's snapshot is the library's to refuse (it changes nothing then, and says why).
+  if (snapshot.world == m_serial && snapshot.nodeLayout != m_nodeLayout) checkNoLiveViews("restore");
+  tandem::python::check(m_world.restore(snapshot.snapshot));
+  m_nodeLayout = snapshot.nodeLayout;
+}
+
+uint64_t PythonWorld::nextSerial() {
+  static uint64_t serials = 0;  // only ever touched with the GIL held
+  return ++serials;
 }
 
 }  // namespace tandem::python

@@ -87,19 +87,22 @@ def test_a_diverging_step_names_the_body():
         world.step(1.0 / 60, steps=200)
 
 
-def test_ids_that_name_nothing_are_index_errors():
+def test_ids_that_name_nothing_are_id_errors_naming_the_call_and_the_id():
     world = tandem.World()
     world.add_rigid_body(tandem.RigidBodyDesc(name="only"))
-    with pytest.raises(IndexError, match=r"rigid_position: no rigid body with id 3 \(the world has 1\)"):
+    with pytest.raises(tandem.IdError, match=r"^rigid_position: rigid body 3: no such rigid body \(the world has 1 slot\)$"):
         world.rigid_position(tandem.RigidBodyId(3))
-    with pytest.raises(IndexError, match="node_positions: no deformable with id 0"):
+    with pytest.raises(IndexError, match=r"^node_positions: deformable 0: no such deformable \(the world has 0 slots\)$"):
         world.node_positions(tandem.DeformableId(0))
-    with pytest.raises(IndexError, match="anchor_state: no anchor with id 2"):
+    with pytest.raises(tandem.Error, match=r"^anchor_state: anchor 2: no such anchor"):
         world.anchor_state(tandem.AnchorId(2))
-    with pytest.raises(IndexError, match="fixed_point_impulse: no fixed point with id 0"):
+    with pytest.raises(tandem.IdError, match=r"^fixed_point_impulse: fixed point 0: no such fixed point"):
         world.fixed_point_impulse(tandem.FixedPointId(0))
+    with pytest.raises(tandem.IdError, match=r"^rigid_name: rigid body -1: no such rigid body"):
+        world.rigid_name(tandem.RigidBodyId(-1))
     with pytest.raises(TypeError):
         world.rigid_position(tandem.DeformableId(0))  # ids do not mix
+    assert not world.contains(tandem.RigidBodyId(3)) and world.contains(tandem.RigidBodyId(0))
 
 
 def test_python_side_mistakes_are_type_and_value_errors():
