@@ -21,15 +21,17 @@ Status validateSettings(const WorldSettings& settings) {
   return {};
 }
 
-Status validateHull(const std::vector<Vec3>& points, const std::string& who) {
-  if (points.size() < 4) return Error{who + ": needs at least 4 points, got " + std::to_string(points.size())};
+// `name` is "convex hull" or "compound hull N".
+Status validateHull(const std::vector<Vec3>& points, const std::string& who, const std::string& name) {
+  const bool single = name == "convex hull";
+  if (points.size() < 4) return Error{who + ": " + (single ? "a " : "") + name + " needs at least 4 points"};
   for (size_t i = 0; i < points.size(); ++i)
-    if (!points[i].allFinite()) return Error{who + ": point " + std::to_string(i) + " is not finite"};
+    if (!points[i].allFinite()) return Error{who + ": " + name + " point " + std::to_string(i) + " is not finite"};
   bool solid = false;  // some four points span a volume
   for (size_t i = 2; i < points.size() && !solid; ++i)
     for (size_t j = i + 1; j < points.size() && !solid; ++j)
       solid = std::abs((points[1] - points[0]).dot((points[i] - points[0]).cross(points[j] - points[0]))) > 1e-12;
-  if (!solid) return Error{who + ": the points are flat (no volume)"};
+  if (!solid) return Error{who + ": " + (single ? "the convex hull's" : name + "'s") + " points are flat (no volume)"};
   return {};
 }
 
@@ -79,12 +81,12 @@ Status validateShape(const RigidShape& s, const std::string& who) {
         return Error{who + ": plane normal must be a finite non-zero vector and the offset finite"};
       break;
     case ShapeType::ConvexHull:
-      if (Status status = validateHull(s.points, who + ": convex hull"); !status) return status;
+      if (Status status = validateHull(s.points, who, "convex hull"); !status) return status;
       break;
     case ShapeType::Compound:
       if (s.hulls.empty()) return Error{who + ": a compound needs at least one convex hull"};
       for (size_t h = 0; h < s.hulls.size(); ++h)
-        if (Status status = validateHull(s.hulls[h], who + ": compound hull " + std::to_string(h)); !status) return status;
+        if (Status status = validateHull(s.hulls[h], who, "compound hull " + std::to_string(h)); !status) return status;
       break;
     case ShapeType::TriangleMesh: {
       if (s.triangles.empty()) return Error{who + ": a triangle mesh needs at least one triangle"};

@@ -411,7 +411,7 @@ TEST(MeshBody, BadInertiaAndVisualMeshesAreRefused) {
   desc.shape.visual.triangles = {{0, 1, 2}};
   EXPECT_EQ(world.addRigidBody(desc).message(), "rigid body 'odd': visual mesh triangle 0 refers to vertex 2 (there are 2)");
   desc.shape = RigidShape::compound({{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}});
-  EXPECT_EQ(world.addRigidBody(desc).message(), "rigid body 'odd': compound hull 0: the points are flat (no volume)");
+  EXPECT_EQ(world.addRigidBody(desc).message(), "rigid body 'odd': compound hull 0's points are flat (no volume)");
   EXPECT_EQ(world.rigidBodyCount(), 0);
 }
 
