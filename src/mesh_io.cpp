@@ -1,5 +1,6 @@
 // Mesh files: TetGen .node/.ele/.face and Wavefront OBJ.
 #include <tandem/mesh.h>
+#include <tandem/mesh_body.h>
 
 #include "format.h"
 #include "input_file.h"
@@ -276,6 +277,45 @@ Result<DeformableMesh> loadObj(const std::string& path, double totalMass, const 
   for (int32_t n = 0; n < mesh.nodeCount(); ++n)
     if (mesh.masses[n] == 0.0) return Error{path + ": vertex " + std::to_string(n + 1) + " belongs to no face"};
   if (Status s = validateMesh(mesh); !s) return Error{path + ": " + s.message()};
+  return mesh;
+}
+
+Result<SurfaceMesh> loadObjSurface(const std::string& path, const Limits& limits) {
+  Result<std::string> text = readInputFile(path, limits.maxMeshFileBytes, "OBJ file", "Limits::maxMeshFileBytes");
+  if (!text) return Error{text.message()};
+  if (Status s = checkObjVertices(path, *text); !s) return Error{s.message()};
+  tinyobj::ObjReader reader;
+  tinyobj::ObjReaderConfig config;
+  config.triangulate = true;
+  if (!reader.ParseFromString(*text, "", config)) {
+    std::string message = reader.Error();
+    while (!message.empty() && message.back() == '\n') message.pop_back();
+    return Error{path + ": " + (message.empty() ? "cannot read the file" : message)};
+  }
+  const auto& vertices = reader.GetAttrib().vertices;
+  SurfaceMesh mesh;
+  for (size_t i = 0; i + 2 < vertices.size(); i += 3)
+    mesh.positions.emplace_back(vertices[i], vertices[i + 1], vertices[i + 2]);
+  // Objects and groups of the same name (a group reopened later in the file) are one part.
+  for (const auto& shape : reader.GetShapes()) {
+    const auto& indices = shape.mesh.indices;
+    if (indices.empty()) continue;
+    const auto named = std::find(mesh.groupNames.begin(), mesh.groupNames.end(), shape.name);
+    const auto group = static_cast<int32_t>(named - mesh.groupNames.begin());
+    if (named == mesh.groupNames.end()) mesh.groupNames.push_back(shape.name);
+    for (size_t i = 0; i + 2 < indices.size(); i += 3) {
+      const std::array<int32_t, 3> t{indices[i].vertex_index, indices[i + 1].vertex_index, indices[i + 2].vertex_index};
+      if (std::max({t[0], t[1], t[2]}) >= static_cast<int32_t>(mesh.positions.size()) || std::min({t[0], t[1], t[2]}) < 0)
+        return Error{path + ": a face refers to a vertex that does not exist"};
+      mesh.triangles.push_back(t);
+      mesh.triangleGroup.push_back(group);
+    }
+  }
+  if (mesh.triangles.empty()) return Error{path + ": the file has no faces"};
+  if (Status s = checkMeshSize(double(mesh.positions.size()), double(mesh.triangles.size()), 0, limits, path,
+                               "the file");
+      !s)
+    return Error{s.message()};
   return mesh;
 }
 

@@ -102,17 +102,71 @@ void addConvexHull(ShapeSurface& surface, const std::vector<Vec3>& points) {
   }
 }
 
+// A visual mesh with smooth normals: each corner's normal is the mean of the normals of the
+// faces round its vertex that turn less than kCreaseDegrees from its own face, each weighted by
+// its angle at the vertex (so the result does not depend on how a polygon was cut into
+// triangles); vertices are split only where the normals differ (a lid's rim, a spout's end cap).
+void addVisualMesh(ShapeSurface& surface, const VisualMesh& mesh) {
+  constexpr double kCreaseDegrees = 50.0;
+  const double creaseCosine = std::cos(kCreaseDegrees * std::numbers::pi / 180.0);
+  const auto& x = mesh.positions;
+  std::vector<Vec3> faceNormal;
+  std::vector<std::vector<std::pair<int32_t, double>>> facesOf(x.size());  // (face, its angle at the vertex)
+  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const auto& f = mesh.triangles[t];
+    const Vec3 normal = (x[f[1]] - x[f[0]]).cross(x[f[2]] - x[f[0]]);
+    faceNormal.push_back(normal.norm() > 0 ? Vec3(normal.normalized()) : Vec3::Zero());
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 u = x[f[(k + 1) % 3]] - x[f[k]], v = x[f[(k + 2) % 3]] - x[f[k]];
+      facesOf[f[k]].emplace_back(static_cast<int32_t>(t), std::atan2(u.cross(v).norm(), u.dot(v)));
+    }
+  }
+  // Per vertex, the normals made so far and their output indices: corners with the same normal
+  // share one output vertex.
+  std::vector<std::vector<std::pair<Vec3, int32_t>>> made(x.size());
+  auto next = static_cast<int32_t>(surface.positions.size());
+  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+    std::array<int32_t, 3> corner{};
+    const Vec3& own = faceNormal[t];
+    for (int k = 0; k < 3; ++k) {
+      const int32_t v = mesh.triangles[t][k];
+      Vec3 sum = Vec3::Zero();
+      for (const auto& [other, angle] : facesOf[v])
+        if (faceNormal[other].dot(own) >= creaseCosine) sum += angle * faceNormal[other];
+      const Vec3 normal = sum.norm() > 0 ? Vec3(sum.normalized()) : own;
+      int32_t index = -1;
+      for (const auto& [existing, at] : made[v])
+        if (existing == normal) index = at;
+      if (index < 0) {
+        index = next++;
+        made[v].emplace_back(normal, index);
+        surface.positions.push_back(x[v]);
+        surface.normals.push_back(normal);
+      }
+      corner[k] = index;
+    }
+    surface.triangles.push_back(corner);
+  }
+}
+
 }  // namespace
 
 ShapeSurface shapeSurface(const RigidShape& shape, int segments) {
   segments = std::max(segments, 3);
   ShapeSurface surface;
+  if (!shape.visual.empty()) {
+    addVisualMesh(surface, shape.visual);
+    return surface;
+  }
   switch (shape.type) {
     case ShapeType::Box: addBox(surface, shape.halfExtents); break;
     case ShapeType::Sphere: addSphereLike(surface, shape.radius, 0.0, segments); break;
     case ShapeType::Capsule: addSphereLike(surface, shape.radius, shape.halfHeight, segments); break;
     case ShapeType::Cylinder: addCylinder(surface, shape.radius, shape.halfHeight, segments); break;
     case ShapeType::ConvexHull: addConvexHull(surface, shape.points); break;
+    case ShapeType::Compound:
+      for (const std::vector<Vec3>& hull : shape.hulls) addConvexHull(surface, hull);
+      break;
     case ShapeType::TriangleMesh:
       for (const auto& t : shape.triangles)
         addFlatTriangle(surface, shape.points[t[0]], shape.points[t[1]], shape.points[t[2]]);

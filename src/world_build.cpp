@@ -21,6 +21,45 @@ Status validateSettings(const WorldSettings& settings) {
   return {};
 }
 
+// `name` is "convex hull" or "compound hull N".
+Status validateHull(const std::vector<Vec3>& points, const std::string& who, const std::string& name) {
+  const bool single = name == "convex hull";
+  if (points.size() < 4) return Error{who + ": " + (single ? "a " : "") + name + " needs at least 4 points"};
+  for (size_t i = 0; i < points.size(); ++i)
+    if (!points[i].allFinite()) return Error{who + ": " + name + " point " + std::to_string(i) + " is not finite"};
+  bool solid = false;  // some four points span a volume
+  for (size_t i = 2; i < points.size() && !solid; ++i)
+    for (size_t j = i + 1; j < points.size() && !solid; ++j)
+      solid = std::abs((points[1] - points[0]).dot((points[i] - points[0]).cross(points[j] - points[0]))) > 1e-12;
+  if (!solid) return Error{who + ": " + (single ? "the convex hull's" : name + "'s") + " points are flat (no volume)"};
+  return {};
+}
+
+Status validateVisual(const VisualMesh& visual, const std::string& who) {
+  const auto count = static_cast<int32_t>(visual.positions.size());
+  for (size_t i = 0; i < visual.positions.size(); ++i)
+    if (!visual.positions[i].allFinite()) return Error{who + ": visual mesh vertex " + std::to_string(i) + " is not finite"};
+  for (size_t t = 0; t < visual.triangles.size(); ++t)
+    for (int32_t v : visual.triangles[t])
+      if (v < 0 || v >= count)
+        return Error{who + ": visual mesh triangle " + std::to_string(t) + " refers to vertex " + std::to_string(v) +
+                     " (there are " + std::to_string(count) + ")"};
+  return {};
+}
+
+// Principal moments: positive, finite, and each at most the sum of the other two (what any
+// mass distribution gives; a relative 1e-9 of slack for rounding).
+Status validateInertia(const Vec3& inertia, const std::string& who) {
+  const std::string given = formatNumber(inertia.x()) + ", " + formatNumber(inertia.y()) + ", " + formatNumber(inertia.z());
+  if (!inertia.allFinite() || !(inertia.minCoeff() > 0))
+    return Error{who + ": inertia must be three positive principal moments (kg·m²), got " + given};
+  for (int k = 0; k < 3; ++k)
+    if (inertia[k] > (inertia[(k + 1) % 3] + inertia[(k + 2) % 3]) * (1 + 1e-9))
+      return Error{who + ": inertia " + given + " kg·m² is no body's: moment " + std::to_string(k) +
+                   " is more than the sum of the other two"};
+  return {};
+}
+
 Status validateShape(const RigidShape& s, const std::string& who) {
   auto positiveFinite = [](double v) { return std::isfinite(v) && v > 0; };
   switch (s.type) {
@@ -41,17 +80,14 @@ Status validateShape(const RigidShape& s, const std::string& who) {
       if (!s.planeNormal.allFinite() || s.planeNormal.norm() < 1e-9 || !std::isfinite(s.planeOffset))
         return Error{who + ": plane normal must be a finite non-zero vector and the offset finite"};
       break;
-    case ShapeType::ConvexHull: {
-      if (s.points.size() < 4) return Error{who + ": a convex hull needs at least 4 points"};
-      for (size_t i = 0; i < s.points.size(); ++i)
-        if (!s.points[i].allFinite()) return Error{who + ": convex hull point " + std::to_string(i) + " is not finite"};
-      bool solid = false;  // some four points span a volume
-      for (size_t i = 2; i < s.points.size() && !solid; ++i)
-        for (size_t j = i + 1; j < s.points.size() && !solid; ++j)
-          solid = std::abs((s.points[1] - s.points[0]).dot((s.points[i] - s.points[0]).cross(s.points[j] - s.points[0]))) > 1e-12;
-      if (!solid) return Error{who + ": the convex hull's points are flat (no volume)"};
+    case ShapeType::ConvexHull:
+      if (Status status = validateHull(s.points, who, "convex hull"); !status) return status;
       break;
-    }
+    case ShapeType::Compound:
+      if (s.hulls.empty()) return Error{who + ": a compound needs at least one convex hull"};
+      for (size_t h = 0; h < s.hulls.size(); ++h)
+        if (Status status = validateHull(s.hulls[h], who, "compound hull " + std::to_string(h)); !status) return status;
+      break;
     case ShapeType::TriangleMesh: {
       if (s.triangles.empty()) return Error{who + ": a triangle mesh needs at least one triangle"};
       DeformableMesh mesh;  // reuse the mesh checks: indices, finiteness, degenerate triangles
@@ -62,6 +98,7 @@ Status validateShape(const RigidShape& s, const std::string& who) {
       break;
     }
   }
+  if (Status status = validateVisual(s.visual, who); !status) return status;
   return {};
 }
 
@@ -113,6 +150,13 @@ RigidShape RigidShape::triangleMesh(std::vector<Vec3> vertices, std::vector<std:
   return s;
 }
 
+RigidShape RigidShape::compound(std::vector<std::vector<Vec3>> hulls) {
+  RigidShape s;
+  s.type = ShapeType::Compound;
+  s.hulls = std::move(hulls);
+  return s;
+}
+
 AnchorDesc AnchorDesc::node(DeformableId deformable, int32_t node, RigidBodyId body) {
   AnchorDesc desc;
   desc.deformable = deformable;
@@ -137,6 +181,8 @@ Result<RigidBodyId> World::addRigidBody(const RigidBodyDesc& desc) {
   if ((desc.shape.type == ShapeType::Plane || desc.shape.type == ShapeType::TriangleMesh) &&
       desc.motion != MotionType::Static)
     return Error{who + ": a plane or a triangle mesh can only be static"};
+  if (desc.inertia && desc.motion == MotionType::Dynamic)
+    if (Status s = validateInertia(*desc.inertia, who); !s) return Error{s.message()};
   if (!desc.position.allFinite()) return Error{who + ": position is not finite"};
   if (!desc.orientation.coeffs().allFinite() || desc.orientation.norm() < 1e-9)
     return Error{who + ": orientation must be a finite non-zero quaternion"};
@@ -164,6 +210,11 @@ Result<RigidBodyId> World::addRigidBody(const RigidBodyDesc& desc) {
   auto shape = std::make_unique<geometry::CollisionShape>();
   shape->shape = desc.shape;
   if (desc.shape.type == ShapeType::ConvexHull) shape->planes = bullet::convexHullPlanes(desc.shape.points);
+  if (desc.shape.type == ShapeType::Compound)
+    for (const std::vector<Vec3>& hull : desc.shape.hulls) {
+      shape->hullPlanesStart.push_back(static_cast<int32_t>(shape->planes.size()));
+      for (const Eigen::Vector4d& plane : bullet::convexHullPlanes(hull)) shape->planes.push_back(plane);
+    }
   if (desc.shape.type == ShapeType::TriangleMesh) shape->grid.build(desc.shape.points, desc.shape.triangles);
   w.rigidShapes[slot] = std::move(shape);
   w.rigid[slot] = RigidSolverState{};

@@ -14,6 +14,11 @@ inline geometry::CollisionShape collisionShape(const RigidShape& shape) {
   collision.shape = shape;
   if (shape.type == ShapeType::ConvexHull) collision.planes = bullet::convexHullPlanes(shape.points);
   if (shape.type == ShapeType::TriangleMesh) collision.grid.build(shape.points, shape.triangles);
+  if (shape.type == ShapeType::Compound)
+    for (const std::vector<Vec3>& hull : shape.hulls) {
+      collision.hullPlanesStart.push_back(static_cast<int32_t>(collision.planes.size()));
+      for (const Eigen::Vector4d& plane : bullet::convexHullPlanes(hull)) collision.planes.push_back(plane);
+    }
   return collision;
 }
 

@@ -48,6 +48,17 @@ RigidShape pyramid() {
   return RigidShape::convexHull({{-0.3, 0, -0.3}, {0.3, 0, -0.3}, {0.3, 0, 0.3}, {-0.3, 0, 0.3}, {0, 0.4, 0}});
 }
 
+// Two boxes as one compound body: a 0.6 m wide block 0.2 m tall and, beside it, a 0.3 m tall
+// step 0.3 m wide, about the block's base centre.
+RigidShape steps() {
+  auto box = [](const Vec3& low, const Vec3& high) {
+    std::vector<Vec3> corners;
+    for (int c = 0; c < 8; ++c) corners.emplace_back(c & 1 ? high.x() : low.x(), c & 2 ? high.y() : low.y(), c & 4 ? high.z() : low.z());
+    return corners;
+  };
+  return RigidShape::compound({box({-0.3, 0, -0.3}, {0.3, 0.2, 0.3}), box({0.3, 0, -0.3}, {0.6, 0.3, 0.3})});
+}
+
 // A roof: a 1.2 m square ridge, 0.3 m high along x = 0, as a static triangle mesh.
 RigidShape roof() {
   return RigidShape::triangleMesh({{-0.6, 0, -0.6}, {0, 0.3, -0.6}, {0.6, 0, -0.6}, {-0.6, 0, 0.6}, {0, 0.3, 0.6}, {0.6, 0, 0.6}},
@@ -118,6 +129,13 @@ INSTANTIATE_TEST_SUITE_P(
                       DropCase{"box", RigidShape::box({0.3, 0.2, 0.3}), Vec3(0, 0.2, 0)},
                       DropCase{"sphere", RigidShape::sphere(0.3), Vec3(0, 0.3, 0)},
                       DropCase{"hull", pyramid(), Vec3::Zero()}, DropCase{"mesh", roof(), Vec3::Zero()}),
+    [](const ::testing::TestParamInfo<DropCase>& param) { return std::string(param.param.name); });
+
+// KNOWN FAILURE, disabled until fixed: on the two-box compound the cloth ends with a node 8.6 cm
+// inside the shape (measured: deepest -0.0858 m against -0.005 m allowed; fastest node 0.105 m/s).
+// Run it with --gtest_also_run_disabled_tests.
+INSTANTIATE_TEST_SUITE_P(
+    DISABLED_Compound, ClothDrop, ::testing::Values(DropCase{"compound", steps(), Vec3::Zero()}),
     [](const ::testing::TestParamInfo<DropCase>& param) { return std::string(param.param.name); });
 
 TEST(Contact, RigidHullRestsOnAStaticMeshAtItsHeight) {

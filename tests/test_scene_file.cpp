@@ -485,7 +485,26 @@ const std::vector<BadScene> kBadScenes{
     {"no_shape", scene(R"({"name": "box"})"), "/rigid_bodies/0: missing field 'shape'"},
     {"shape_type", scene(R"({"name": "box", "shape": {"type": "cube"}})"),
      "/rigid_bodies/0/shape/type: unknown value 'cube' (expected one of: box, sphere, cylinder, capsule, plane, "
-     "convex_hull, triangle_mesh)"},
+     "convex_hull, triangle_mesh, compound, mesh)"},
+    {"density_of_a_box", scene(R"({"name": "box", "shape": {"type": "box", "half_extents": [0.1, 0.1, 0.1]}, "density": 500})"),
+     "/rigid_bodies/0/density: only a mesh shape has a density (give 'mass')"},
+    {"mesh_mass_and_density", scene(R"({"name": "pot", "shape": {"type": "mesh", "file": "pot.obj"}, "mass": 1, "density": 500})"),
+     "/rigid_bodies/0/density: give either 'mass' or 'density', not both"},
+    {"mesh_collision", scene(R"({"name": "pot", "shape": {"type": "mesh", "file": "pot.obj", "collision": "hulls"}})"),
+     "/rigid_bodies/0/shape/collision: unknown value 'hulls' (expected one of: convex_hull, hull_per_group, hull_per_piece)"},
+    {"mesh_hull_vertices", scene(R"({"name": "pot", "shape": {"type": "mesh", "file": "pot.obj", "max_hull_vertices": 3}})"),
+     "/rigid_bodies/0/shape/max_hull_vertices: must be in [4, 4096], got 3"},
+    {"mesh_scale", scene(R"({"name": "pot", "shape": {"type": "mesh", "file": "pot.obj", "scale": 0}})"),
+     "/rigid_bodies/0/shape/scale: must be > 0, got 0"},
+    {"mesh_inertia", scene(R"({"name": "pot", "shape": {"type": "mesh", "file": "pot.obj"}, "inertia": [1, 1, 1]})"),
+     "/rigid_bodies/0/inertia: a mesh shape's inertia comes from its mesh"},
+    {"mesh_missing_file", scene(R"({"name": "pot", "shape": {"type": "mesh", "file": "no_such_pot.obj"}})"),
+     "/rigid_bodies/0/shape/file: "},
+    {"mesh_no_file", scene(R"({"name": "pot", "shape": {"type": "mesh"}})"), "/rigid_bodies/0/shape: missing field 'file'"},
+    {"inertia_impossible", scene(R"({"name": "box", "shape": {"type": "box", "half_extents": [0.1, 0.1, 0.1]}, "inertia": [1, 1, 5]})"),
+     "/rigid_bodies/0: rigid body 'box': inertia 1, 1, 5 kg·m² is no body's: moment 2 is more than the sum of the other two"},
+    {"compound_short_hull", scene(R"({"name": "c", "shape": {"type": "compound", "hulls": [[[0, 0, 0], [1, 0, 0], [0, 1, 0]]]}})"),
+     "/rigid_bodies/0/shape/hulls/0: a hull needs at least 4 points"},
     {"flat_box", scene(R"({"name": "box", "shape": {"type": "box", "half_extents": [0.1, 0, 0.1]}})"),
      "/rigid_bodies/0/shape/half_extents: must all be > 0"},
     {"sphere_field", scene(R"({"name": "ball", "shape": {"type": "sphere", "radius": 1, "half_extents": [1, 1, 1]}})"),
@@ -650,6 +669,56 @@ TEST(SceneFile, MeshFilesWithBadOrFarCoordinatesAreRefused) {
   fs::create_symlink("/dev/zero", zero);
   EXPECT_EQ(loadTetGen((tempDir() / "zero").string(), 1000.0).message(),
             zero.string() + ": is not a regular file (a device, pipe or socket); TetGen files must be regular files");
+}
+
+// Mesh bodies: mass from density times the mesh's volume, the body at the mesh's centre of mass,
+// anchors' local points in the mesh's frame, written back as given; a mesh that bounds no solid
+// is refused naming the file and the fault.
+TEST(SceneFile, MeshBodiesBuildFromTheirVolumeAndRoundTrip) {
+  // A 0.2 x 0.1 x 0.4 box whose corner is at the mesh's origin: centre (0.1, 0.05, 0.2).
+  std::ostringstream obj;
+  for (int c = 0; c < 8; ++c) obj << "v " << (c & 1 ? 0.2 : 0) << " " << (c & 2 ? 0.1 : 0) << " " << (c & 4 ? 0.4 : 0) << "\n";
+  const char* faces = "f 1 3 4\nf 1 4 2\nf 5 6 8\nf 5 8 7\nf 1 2 6\nf 1 6 5\nf 3 7 8\nf 3 8 4\nf 1 5 7\nf 1 7 3\nf 2 4 8\nf 2 8 6\n";
+  writeFile("brick.obj", obj.str() + faces);
+  writeFile("open_brick.obj", obj.str() + std::string(faces).substr(0, std::string(faces).rfind("f 2 8 6")));
+  const std::string json = R"({"format": 1, "name": "bricks", "rigid_bodies": [
+      {"name": "brick", "shape": {"type": "mesh", "file": "brick.obj", "scale": 2}, "density": 500,
+       "position": [1, 2, 3], "euler_degrees": [0, 90, 0]}],
+    "deformables": [{"name": "rope", "mesh": {"type": "rope", "start": [1, 3, 3], "end": [1, 4, 3], "nodes": 5}, "mass": 0.1}],
+    "anchors": [{"deformable": "rope", "node": 0, "body": "brick", "local_point": [0.2, 0.2, 0.8]}]})";
+  Result<Scene> scene = parseScene(json, "bricks.json", tempDir().string());
+  ASSERT_TRUE(scene.ok()) << scene.message();
+  ASSERT_TRUE(scene->rigidBodies[0].meshShape.has_value());
+  EXPECT_EQ(scene->rigidBodies[0].meshShape->options.scale, 2.0);
+  Result<Scene> reread = parseScene(sceneToJson(*scene), "again.json", tempDir().string());
+  ASSERT_TRUE(reread.ok()) << reread.message();
+  EXPECT_EQ(sceneToJson(*reread), sceneToJson(*scene));
+  World world;
+  const Status built = buildScene(*scene, world);
+  ASSERT_TRUE(built.ok()) << built.message();
+  const RigidBodyId brick = *world.findRigidBody("brick");
+  // Scaled by 2: 0.4 x 0.2 x 0.8 = 0.064 m³ of 500 kg/m³.
+  // (OBJ coordinates are read in single precision: 0.1 is 0.1 to 1.5e-9.)
+  EXPECT_NEAR(world.rigidMass(brick), 32.0, 1e-5);
+  // Turned 90° about y, the mesh's centre (0.2, 0.1, 0.4) lands at (0.4, 0.1, -0.2) from its origin.
+  EXPECT_LT((world.rigidPosition(brick) - Vec3(1.4, 2.1, 2.8)).norm(), 1e-7);
+  const Mat3 inertia = world.rigidInertia(brick);
+  EXPECT_NEAR(inertia(1, 1), 32.0 / 12 * (0.4 * 0.4 + 0.8 * 0.8), 1e-6);
+  // The anchor's local point, given in the mesh's frame: the mesh's (0.2, 0.2, 0.8) is 0.1 above
+  // the centre and 0.4 along the mesh's z, which the turn takes to world +x.
+  const AnchorState anchor = world.anchorState(AnchorId{0});
+  EXPECT_LT((anchor.worldPointOnBody - (Vec3(1, 2, 3) + Vec3(0.8, 0.2, -0.2))).norm(), 1e-7);
+
+  std::string open = json;
+  open.replace(open.find("brick.obj"), 9, "open_brick.obj");
+  Result<Scene> openScene = parseScene(open, "bricks.json", tempDir().string());
+  ASSERT_TRUE(openScene.ok());
+  World refused;
+  const std::string message = buildScene(*openScene, refused).message();
+  EXPECT_NE(message.find("bricks.json: /rigid_bodies/0/shape/file: " + (tempDir() / "open_brick.obj").string() +
+                         ": the surface is open: the edge from vertex"),
+            std::string::npos)
+      << message;
 }
 
 TEST(SceneFile, AMissingFileIsNamed) {

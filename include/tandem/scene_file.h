@@ -8,6 +8,7 @@
 
 #include <tandem/export.h>
 #include <tandem/limits.h>
+#include <tandem/mesh_body.h>
 #include <tandem/world.h>
 
 #include <array>
@@ -46,9 +47,20 @@ struct SceneMesh {
   std::string file;
 };
 
+// A rigid body's shape made from a closed OBJ mesh (shape type "mesh"): collides as convex
+// hulls, drawn as the mesh, mass properties from its volume (include/tandem/mesh_body.h).
+struct SceneMeshShape {
+  std::string file;  // as written in the file, relative to the scene's folder unless absolute
+  MeshBodyOptions options;
+};
+
 struct SceneRigidBody {
+  // For a mesh shape, desc.position and desc.orientation place the mesh's own frame (its OBJ
+  // coordinates), and desc.mass, desc.inertia and desc.shape are filled in by buildScene.
   RigidBodyDesc desc;
   std::string shapeFile;  // convex hull or triangle mesh: the OBJ its points came from, as written
+  std::optional<SceneMeshShape> meshShape;
+  std::optional<double> density;  // kg/m³, mesh shapes only: mass = density × the mesh's volume
   std::optional<Colour> colour;  // unset: the renderer's palette
 };
 

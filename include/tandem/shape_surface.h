@@ -19,7 +19,8 @@ struct ShapeSurface {
   std::vector<std::array<int32_t, 3>> triangles;
 };
 
-// `segments`: around a sphere, cylinder or capsule (at least 3).
+// `segments`: around a sphere, cylinder or capsule (at least 3). A shape with a visual mesh
+// (RigidShape::visual) gives that mesh, with smooth normals split at creases sharper than 50°.
 TANDEM_API ShapeSurface shapeSurface(const RigidShape& shape, int segments = 32);
 
 }  // namespace tandem

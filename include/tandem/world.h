@@ -109,7 +109,15 @@ struct WorldSettings {
 
 // ---- Rigid bodies (Bullet) ------------------------------------------------------------------
 
-enum class ShapeType { Box, Sphere, Cylinder, Capsule, Plane, ConvexHull, TriangleMesh };
+enum class ShapeType { Box, Sphere, Cylinder, Capsule, Plane, ConvexHull, TriangleMesh, Compound };
+
+// How a body is drawn when that is not its collision shape (a mesh body: its triangles, while it
+// collides as convex hulls). In the body's frame; triangles counter-clockwise seen from outside.
+struct VisualMesh {
+  std::vector<Vec3> positions;
+  std::vector<std::array<int32_t, 3>> triangles;
+  bool empty() const { return triangles.empty(); }
+};
 
 struct TANDEM_API RigidShape {
   ShapeType type = ShapeType::Box;
@@ -120,6 +128,8 @@ struct TANDEM_API RigidShape {
   double planeOffset = 0.0;
   std::vector<Vec3> points;                       // convex hull: its points; triangle mesh: its vertices
   std::vector<std::array<int32_t, 3>> triangles;  // triangle mesh (static bodies only)
+  std::vector<std::vector<Vec3>> hulls;           // compound: each convex part's points
+  VisualMesh visual;  // drawn instead of the collision shape when not empty (renderer, viewer, export)
 
   static RigidShape box(const Vec3& halfExtents);
   static RigidShape sphere(double radius);
@@ -128,6 +138,10 @@ struct TANDEM_API RigidShape {
   static RigidShape plane(const Vec3& normal, double offset);
   static RigidShape convexHull(std::vector<Vec3> points);  // in the body's frame, about its centre of mass
   static RigidShape triangleMesh(std::vector<Vec3> vertices, std::vector<std::array<int32_t, 3>> triangles);
+  // Several convex hulls moving as one body (Bullet's btCompoundShape of btConvexHullShapes), each
+  // of at least 4 points spanning a volume, in the body's frame about its centre of mass.
+  // Rigid bodies built from a closed mesh (include/tandem/mesh_body.h) are one hull or these.
+  static RigidShape compound(std::vector<std::vector<Vec3>> hulls);
 };
 
 enum class MotionType { Dynamic, Static, Kinematic };
@@ -137,6 +151,11 @@ struct RigidBodyDesc {
   RigidShape shape;
   MotionType motion = MotionType::Dynamic;
   double mass = 1.0;  // kg, dynamic bodies only
+  // kg·m²: the principal moments of inertia about the centre of mass, along the body's own axes
+  // (each > 0, and none more than the sum of the other two). Unset: Bullet's, from the shape and
+  // the mass (exact for boxes, spheres, cylinders and capsules; the bounding box's for hulls and
+  // compounds). A mesh body (makeMeshBody) has them from its volume.
+  std::optional<Vec3> inertia;
   Vec3 position = Vec3::Zero();
   Quat orientation = Quat::Identity();
   Vec3 linearVelocity = Vec3::Zero();   // m/s

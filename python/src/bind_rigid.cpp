@@ -13,7 +13,8 @@ void bindRigid(py::module_& module) {
       .value("CAPSULE", ShapeType::Capsule)
       .value("PLANE", ShapeType::Plane)
       .value("CONVEX_HULL", ShapeType::ConvexHull)
-      .value("TRIANGLE_MESH", ShapeType::TriangleMesh);
+      .value("TRIANGLE_MESH", ShapeType::TriangleMesh)
+      .value("COMPOUND", ShapeType::Compound);
 
   py::enum_<MotionType>(module, "MotionType",
                         "DYNAMIC bodies move under forces; STATIC never move; KINEMATIC follow "

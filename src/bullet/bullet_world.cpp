@@ -35,6 +35,31 @@ std::vector<Eigen::Vector4d> convexHullPlanes(const std::vector<Vec3>& points) {
   return planes;
 }
 
+std::vector<Vec3> convexHullVertices(const std::vector<Vec3>& points) {
+  btConvexHullComputer computer;
+  std::vector<double> coordinates;
+  for (const Vec3& p : points) coordinates.insert(coordinates.end(), {p.x(), p.y(), p.z()});
+  computer.compute(coordinates.data(), 3 * static_cast<int>(sizeof(double)), static_cast<int>(points.size()), 0, 0);
+  std::vector<Vec3> vertices;
+  for (int v = 0; v < computer.vertices.size(); ++v) vertices.push_back(fromBt(computer.vertices[v]));
+  return vertices;
+}
+
+namespace {
+std::unique_ptr<btConvexHullShape> makeHull(const std::vector<Vec3>& points) {
+  auto hull = std::make_unique<btConvexHullShape>();
+  for (const Vec3& p : points) hull->addPoint(toBt(p), false);
+  hull->setMargin(kHullMargin);  // Bullet's 4 cm default lies outside the hull: it would look 4 cm larger
+  hull->recalcLocalAabb();
+  return hull;
+}
+
+// A compound that owns its children (Bullet's only points at them).
+struct OwningCompoundShape final : btCompoundShape {
+  std::vector<std::unique_ptr<btCollisionShape>> children;
+};
+}  // namespace
+
 BulletWorld::BulletWorld(const Vec3& gravity) : m_impl(std::make_unique<Impl>()) {
   m_impl->world.setGravity(toBt(gravity));
   m_impl->world.getSimulationIslandManager()->setSplitIslands(false);
@@ -57,12 +82,14 @@ int BulletWorld::addRigidBody(const RigidBodyDesc& desc, int slot) {
     case ShapeType::Plane:
       shape = std::make_unique<btStaticPlaneShape>(toBt(s.planeNormal.normalized()), s.planeOffset);
       break;
-    case ShapeType::ConvexHull: {
-      auto hull = std::make_unique<btConvexHullShape>();
-      for (const Vec3& p : s.points) hull->addPoint(toBt(p), false);
-      hull->setMargin(kHullMargin);  // Bullet's 4 cm default lies outside the hull: it would look 4 cm larger
-      hull->recalcLocalAabb();
-      shape = std::move(hull);
+    case ShapeType::ConvexHull: shape = makeHull(s.points); break;
+    case ShapeType::Compound: {
+      auto compound = std::make_unique<OwningCompoundShape>();
+      for (const std::vector<Vec3>& points : s.hulls) {
+        compound->children.push_back(makeHull(points));
+        compound->addChildShape(btTransform::getIdentity(), compound->children.back().get());
+      }
+      shape = std::move(compound);
       break;
     }
     case ShapeType::TriangleMesh: {
@@ -83,7 +110,12 @@ int BulletWorld::addRigidBody(const RigidBodyDesc& desc, int slot) {
   const bool dynamic = desc.motion == MotionType::Dynamic;
   const double mass = dynamic ? desc.mass : 0.0;
   btVector3 inertia(0, 0, 0);
-  if (dynamic) shape->calculateLocalInertia(mass, inertia);
+  if (dynamic) {
+    if (desc.inertia)
+      inertia = toBt(*desc.inertia);
+    else
+      shape->calculateLocalInertia(mass, inertia);
+  }
 
   btTransform pose(toBt(desc.orientation.normalized()), toBt(desc.position));
   auto motionState = std::make_unique<btDefaultMotionState>(pose);

@@ -27,6 +27,8 @@ class SolverHooks {
 
 // The face planes (n, d with n·x = d, n outward) of the convex hull of `points`.
 std::vector<Eigen::Vector4d> convexHullPlanes(const std::vector<Vec3>& points);
+// The vertices of the convex hull of `points` (the points that are corners of it).
+std::vector<Vec3> convexHullVertices(const std::vector<Vec3>& points);
 
 class BulletWorld {
  public:

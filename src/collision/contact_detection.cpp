@@ -31,6 +31,12 @@ double boundingRadius(const RigidShape& shape) {
       for (const Vec3& p : shape.points) radius = std::max(radius, p.norm());
       return radius;
     }
+    case ShapeType::Compound: {
+      double radius = 0.0;
+      for (const std::vector<Vec3>& hull : shape.hulls)
+        for (const Vec3& p : hull) radius = std::max(radius, p.norm());
+      return radius;
+    }
     case ShapeType::Plane:
     case ShapeType::TriangleMesh: return INFINITY;
   }
@@ -42,6 +48,10 @@ double boundingRadius(const RigidShape& shape) {
 std::vector<Vec3> pokingPoints(const RigidShape& shape) {
   std::vector<Vec3> points;
   if (shape.type == ShapeType::ConvexHull) return shape.points;
+  if (shape.type == ShapeType::Compound) {
+    for (const std::vector<Vec3>& hull : shape.hulls) points.insert(points.end(), hull.begin(), hull.end());
+    return points;
+  }
   if (shape.type == ShapeType::Box) {
     for (int corner = 0; corner < 8; ++corner)
       points.push_back(shape.halfExtents.cwiseProduct(

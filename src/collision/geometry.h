@@ -227,29 +227,46 @@ struct TriangleGrid : SpatialHash {
 };
 
 // A rigid shape with what collision detection derives from it once: a convex hull's face
-// planes (n, d: n·x = d, n outward), a triangle mesh's grid.
+// planes (n, d: n·x = d, n outward), a compound's planes hull after hull (hull h's from
+// hullPlanesStart[h]), a triangle mesh's grid.
 struct CollisionShape {
   RigidShape shape;
   std::vector<Eigen::Vector4d> planes;
+  std::vector<int32_t> hullPlanesStart;
   TriangleGrid grid;
 };
+
+// The deepest of the planes [first, last): a convex hull's signed distance. Exact inside and over
+// faces; outside near an edge or a corner it is less than the true distance, which only makes
+// contacts start a little early.
+inline ShapeDistance distanceToHull(const std::vector<Eigen::Vector4d>& planes, size_t first, size_t last, const Vec3& q) {
+  double distance = -INFINITY;
+  Vec3 normal = Vec3::UnitY();
+  for (size_t p = first; p < last; ++p) {
+    const Eigen::Vector4d& plane = planes[p];
+    const double d = plane.head<3>().dot(q) - plane[3];
+    if (d > distance) {
+      distance = d;
+      normal = plane.head<3>();
+    }
+  }
+  return {distance, normal, q - distance * normal};
+}
 
 // `reach`: how far from a triangle mesh to look (other shapes are exact everywhere).
 inline ShapeDistance distanceToShape(const CollisionShape& collision, const Vec3& q, double reach) {
   const RigidShape& shape = collision.shape;
-  if (shape.type == ShapeType::ConvexHull) {
-    // The deepest plane: exact inside and over faces; outside near an edge or a corner it is
-    // less than the true distance, which only makes contacts start a little early.
-    double distance = -INFINITY;
-    Vec3 normal = Vec3::UnitY();
-    for (const Eigen::Vector4d& plane : collision.planes) {
-      const double d = plane.head<3>().dot(q) - plane[3];
-      if (d > distance) {
-        distance = d;
-        normal = plane.head<3>();
-      }
+  if (shape.type == ShapeType::ConvexHull) return distanceToHull(collision.planes, 0, collision.planes.size(), q);
+  if (shape.type == ShapeType::Compound) {
+    // The union of the hulls: the nearest hull outside, the one it is in deepest inside.
+    ShapeDistance best{INFINITY, Vec3::UnitY(), q};
+    const size_t hulls = collision.hullPlanesStart.size();
+    for (size_t h = 0; h < hulls; ++h) {
+      const size_t last = h + 1 < hulls ? static_cast<size_t>(collision.hullPlanesStart[h + 1]) : collision.planes.size();
+      const ShapeDistance d = distanceToHull(collision.planes, collision.hullPlanesStart[h], last, q);
+      if (d.distance < best.distance) best = d;
     }
-    return {distance, normal, q - distance * normal};
+    return best;
   }
   if (shape.type == ShapeType::TriangleMesh) {
     ShapeDistance best{INFINITY, Vec3::UnitY(), q};
@@ -328,6 +345,7 @@ inline ShapeDistance distanceToShape(const RigidShape& shape, const Vec3& q) {
       return {distance, n, q - distance * n};
     }
     case ShapeType::ConvexHull:
+    case ShapeType::Compound:
     case ShapeType::TriangleMesh: break;  // need their CollisionShape
   }
   return {1e300, Vec3::UnitY(), q};

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <optional>
 
 namespace tandem {
 namespace {
@@ -92,7 +93,37 @@ DeformableMesh deformableMesh(const Scene& scene, const SceneDeformable& deforma
   return std::move(mesh).value();
 }
 
-RigidBodyDesc rigidDesc(const Scene& scene, const SceneRigidBody& body, const std::string& path, const Limits& limits) {
+// A mesh body: its shape, mass and inertia, and the pose of its centre of mass and principal
+// axes from where the scene places the mesh's own frame. `frame` gets the body frame in the mesh's.
+RigidBodyDesc meshRigidDesc(const Scene& scene, const SceneRigidBody& body, const std::string& path,
+                            const Limits& limits, MeshBody& frame) {
+  const std::string file = resolve(scene, body.meshShape->file);
+  Result<SurfaceMesh> surface = loadObjSurface(file, limits);
+  if (!surface) throw BuildError{path + "/shape/file: " + surface.message()};
+  checkCoordinates(surface->positions, limits, path + "/shape/file");
+  Result<MeshBody> mesh = makeMeshBody(*surface, body.meshShape->options, file);
+  if (!mesh) throw BuildError{path + "/shape/file: " + mesh.message()};
+  RigidBodyDesc desc = body.desc;
+  if (desc.motion == MotionType::Dynamic && body.density) {
+    desc.mass = *body.density * mesh->massProperties.volume;
+    if (!(desc.mass >= limits.minMass && desc.mass <= limits.maxMass))
+      throw BuildError{path + "/density: the body's mass, " + formatNumber(desc.mass) + " kg (" +
+                       formatNumber(mesh->massProperties.volume) + " m³ of the mesh), is outside " +
+                       bounds(limits.minMass, limits.maxMass) + " kg (Limits::minMass, maxMass)"};
+  }
+  const RigidBodyDesc placed = mesh->desc(desc.name, desc.mass, desc.position, desc.orientation);
+  desc.shape = placed.shape;
+  desc.position = placed.position;
+  desc.orientation = placed.orientation;
+  desc.inertia = desc.motion == MotionType::Dynamic ? placed.inertia : std::nullopt;
+  frame = std::move(mesh).value();
+  frame.shape = RigidShape{};  // only the frame is kept
+  return desc;
+}
+
+RigidBodyDesc rigidDesc(const Scene& scene, const SceneRigidBody& body, const std::string& path, const Limits& limits,
+                        std::optional<MeshBody>& meshFrame) {
+  if (body.meshShape) return meshRigidDesc(scene, body, path, limits, meshFrame.emplace());
   RigidBodyDesc desc = body.desc;
   if (body.shapeFile.empty()) return desc;
   Result<DeformableMesh> obj = loadObj(resolve(scene, body.shapeFile), 1.0, limits);
@@ -189,13 +220,17 @@ void build(const Scene& scene, World& world, const Limits& limits) {
   MassRange masses;
   check(world.setSettings(scene.settings), "/solver");
   std::map<std::string, RigidBodyId> rigid;
+  std::map<std::string, MeshBody> meshFrames;  // mesh bodies: their frame in the mesh's
   for (size_t i = 0; i < scene.rigidBodies.size(); ++i) {
     const std::string path = "/rigid_bodies/" + std::to_string(i);
-    Result<RigidBodyId> id = world.addRigidBody(rigidDesc(scene, scene.rigidBodies[i], path, limits));
+    std::optional<MeshBody> meshFrame;
+    const RigidBodyDesc desc = rigidDesc(scene, scene.rigidBodies[i], path, limits, meshFrame);
+    Result<RigidBodyId> id = world.addRigidBody(desc);
     check(id.status(), path);
-    if (scene.rigidBodies[i].desc.motion == MotionType::Dynamic)
-      masses.add(scene.rigidBodies[i].desc.mass, path + "/mass", "the body");
-    rigid[scene.rigidBodies[i].desc.name] = *id;
+    if (desc.motion == MotionType::Dynamic)
+      masses.add(desc.mass, path + (scene.rigidBodies[i].density ? "/density" : "/mass"), "the body");
+    rigid[desc.name] = *id;
+    if (meshFrame) meshFrames[desc.name] = std::move(*meshFrame);
   }
   for (size_t i = 0; i < scene.joints.size(); ++i) {
     const SceneJoint& joint = scene.joints[i];
@@ -234,7 +269,9 @@ void build(const Scene& scene, World& world, const Limits& limits) {
   for (size_t i = 0; i < scene.anchors.size(); ++i) {
     const SceneAnchor& anchor = scene.anchors[i];
     const std::string path = "/anchors/" + std::to_string(i);
-    const AnchorDesc desc = anchorDesc(world, deformables.at(anchor.deformable), rigid.at(anchor.body), anchor, path);
+    AnchorDesc desc = anchorDesc(world, deformables.at(anchor.deformable), rigid.at(anchor.body), anchor, path);
+    // A mesh body's points are written in the mesh's frame.
+    if (desc.localPoint && meshFrames.count(anchor.body)) desc.localPoint = meshFrames.at(anchor.body).toBodyFrame(*desc.localPoint);
     check(world.addAnchor(desc).status(), path);
   }
   masses.check(limits);

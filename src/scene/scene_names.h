@@ -18,7 +18,13 @@ inline const Names<ShapeType> kShapeNames{{"box", ShapeType::Box},
                                           {"capsule", ShapeType::Capsule},
                                           {"plane", ShapeType::Plane},
                                           {"convex_hull", ShapeType::ConvexHull},
-                                          {"triangle_mesh", ShapeType::TriangleMesh}};
+                                          {"triangle_mesh", ShapeType::TriangleMesh},
+                                          {"compound", ShapeType::Compound}};
+// "mesh" is a shape type of scene files that is no ShapeType: a convex hull or a compound made
+// from a closed mesh file (SceneMeshShape).
+inline const Names<MeshCollision> kMeshCollisionNames{{"convex_hull", MeshCollision::ConvexHull},
+                                                      {"hull_per_group", MeshCollision::HullPerGroup},
+                                                      {"hull_per_piece", MeshCollision::HullPerPiece}};
 inline const Names<SceneJoint::Kind> kJointNames{{"hinge", SceneJoint::Kind::Hinge}, {"fixed", SceneJoint::Kind::Fixed}};
 inline const Names<SceneMesh::Kind> kMeshNames{{"rope", SceneMesh::Kind::Rope},
                                                {"cloth_grid", SceneMesh::Kind::ClothGrid},

@@ -98,6 +98,24 @@ void readShape(ObjectReader& body, SceneRigidBody& out, const Bounds& bounds) {
   ObjectReader shape(body.required("shape"), body.fieldPath("shape"));
   RigidShape& s = out.desc.shape;
   shape.required("type");
+  const std::string type = shape.string("type");
+  if (type == "mesh") {
+    SceneMeshShape mesh;
+    mesh.file = shape.string("file");
+    mesh.options.collision = shape.choice("collision", scene::kMeshCollisionNames, mesh.options.collision);
+    mesh.options.maxHullVertices = shape.integer("max_hull_vertices", mesh.options.maxHullVertices, 4, 4096);
+    mesh.options.scale = shape.positive("scale", mesh.options.scale);
+    bounds.size(mesh.options.scale, shape.fieldPath("scale"));
+    s.type = mesh.options.collision == MeshCollision::ConvexHull ? ShapeType::ConvexHull : ShapeType::Compound;
+    out.meshShape = std::move(mesh);
+    shape.finish();
+    return;
+  }
+  if (std::none_of(scene::kShapeNames.begin(), scene::kShapeNames.end(), [&](const auto& n) { return n.first == type; })) {
+    std::string allowed;
+    for (const auto& [name, unused] : scene::kShapeNames) allowed += name + ", ";
+    fail(shape.fieldPath("type"), "unknown value '" + type + "' (expected one of: " + allowed + "mesh)");
+  }
   s.type = shape.choice("type", scene::kShapeNames, ShapeType::Box);
   auto positiveRequired = [&](const std::string& key) {
     shape.required(key);
@@ -158,6 +176,18 @@ void readShape(ObjectReader& body, SceneRigidBody& out, const Bounds& bounds) {
       }
       break;
     }
+    case ShapeType::Compound: {
+      const Json& hulls = shape.required("hulls");
+      const std::string path = shape.fieldPath("hulls");
+      if (!hulls.is_array() || hulls.empty()) fail(path, "must be a non-empty array of hulls, each an array of [x, y, z] points");
+      for (size_t h = 0; h < hulls.size(); ++h) {
+        const std::string at = path + "/" + std::to_string(h);
+        s.hulls.push_back(readPoints(hulls[h], at));
+        if (s.hulls.back().size() < 4) fail(at, "a hull needs at least 4 points");
+        for (size_t i = 0; i < s.hulls.back().size(); ++i) bounds.coordinates(s.hulls.back()[i], at + "/" + std::to_string(i));
+      }
+      break;
+    }
   }
   shape.finish();
 }
@@ -168,8 +198,18 @@ SceneRigidBody readRigidBody(const Json& value, const std::string& path, const B
   RigidBodyDesc& d = out.desc;
   d.name = body.string("name");
   readShape(body, out, bounds);
+  if (body.has("density")) {
+    if (!out.meshShape) fail(body.fieldPath("density"), "only a mesh shape has a density (give 'mass')");
+    if (body.has("mass")) fail(body.fieldPath("density"), "give either 'mass' or 'density', not both");
+    out.density = body.positive("density", 1.0);
+  }
   d.mass = body.nonNegative("mass", 1.0);
   if (d.mass != 0) bounds.mass(d.mass, body.fieldPath("mass"));
+  if (body.has("inertia")) {
+    if (out.meshShape) fail(body.fieldPath("inertia"), "a mesh shape's inertia comes from its mesh");
+    d.inertia = body.vec3("inertia");
+    if (!(d.inertia->minCoeff() > 0)) fail(body.fieldPath("inertia"), "must be three principal moments > 0 (kg·m²)");
+  }
   const bool kinematic = body.boolean("kinematic", false);
   d.motion = kinematic ? MotionType::Kinematic : d.mass == 0 ? MotionType::Static : MotionType::Dynamic;
   if ((d.shape.type == ShapeType::Plane || d.shape.type == ShapeType::TriangleMesh) && d.motion == MotionType::Dynamic)

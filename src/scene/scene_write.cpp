@@ -18,6 +18,14 @@ Json colourJson(const Colour& c) { return Json::array({c[0], c[1], c[2]}); }
 
 Json shapeJson(const SceneRigidBody& body) {
   const RigidShape& s = body.desc.shape;
+  if (body.meshShape) {
+    const MeshBodyOptions& options = body.meshShape->options;
+    return Json{{"type", "mesh"},
+                {"file", body.meshShape->file},
+                {"collision", scene::nameOf(scene::kMeshCollisionNames, options.collision)},
+                {"max_hull_vertices", options.maxHullVertices},
+                {"scale", options.scale}};
+  }
   Json shape{{"type", scene::nameOf(scene::kShapeNames, s.type)}};
   switch (s.type) {
     case ShapeType::Box: shape["half_extents"] = vec(s.halfExtents); break;
@@ -49,6 +57,16 @@ Json shapeJson(const SceneRigidBody& body) {
       shape["triangles"] = triangles;
       break;
     }
+    case ShapeType::Compound: {
+      Json hulls = Json::array();
+      for (const std::vector<Vec3>& hull : s.hulls) {
+        Json points = Json::array();
+        for (const Vec3& p : hull) points.push_back(vec(p));
+        hulls.push_back(points);
+      }
+      shape["hulls"] = hulls;
+      break;
+    }
   }
   return shape;
 }
@@ -69,6 +87,11 @@ Json rigidJson(const SceneRigidBody& body) {
            {"can_sleep", d.canSleep},
            {"collision_group", d.collisionGroup},
            {"collision_mask", d.collisionMask}};
+  if (body.density) {
+    out.erase("mass");
+    out["density"] = *body.density;
+  }
+  if (d.inertia && !body.meshShape && d.motion == MotionType::Dynamic) out["inertia"] = vec(*d.inertia);
   if (body.colour) out["colour"] = colourJson(*body.colour);
   return out;
 }

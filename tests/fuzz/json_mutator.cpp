@@ -39,7 +39,8 @@ const std::vector<std::string> kWords{
     "triangle_mesh", "hinge", "rope", "cloth_grid", "tet_box", "tet_cylinder", "obj", "tetgen",
     "mass_spring", "shape_matching", "position_based", "corotational_fem", "resist_both",
     "resist_compression", "resist_stretch", "auto", "direct", "iterative", "coulomb", "pressure",
-    "meshes/dish.obj", "meshes/rope_strip.obj", "meshes", ""};
+    "compound", "hulls", "inertia", "scale", "max_hull_vertices", "hull_per_group", "hull_per_piece",
+    "meshes/dish.obj", "meshes/rope_strip.obj", "meshes/teapot.obj", "meshes", ""};
 
 const std::vector<double> kInterestingNumbers{0.0, -0.0, 1.0, -1.0, 0.5, 2.0, 1e-300, -1e-300, 1e-12, 1e12,
                                               1e300, -1e300, 1.7976931348623157e308, 4.9e-324, 2147483647.0,
