@@ -15,6 +15,8 @@
 #include <fstream>
 #include <numeric>
 
+#include <sys/wait.h>
+
 namespace tandem {
 namespace {
 
@@ -64,14 +66,20 @@ class ReportJson : public testing::Test {
                                       std::to_string(kIterations) + " --substeps " + std::to_string(kSubsteps) +
                                       " --quiet --report-json " + reportPath,
                                   output);
-    ASSERT_EQ(status, 0) << output;
+    // The weak rope tears on purpose (its violations are in the report): `tandem run` finishes
+    // and exits 5 (apps/exit_codes.h). A failure here fails every test of the suite (SetUp).
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 5) {
+      setupError = "tandem run exited with status " + std::to_string(status) + ", not 5:\n" + output;
+      return;
+    }
     std::ifstream file(reportPath);
     report = Json::parse(file);
   }
-  static std::string scenePath;
+  void SetUp() override { ASSERT_TRUE(setupError.empty()) << setupError; }
+  static std::string scenePath, setupError;
   static Json report;
 };
-std::string ReportJson::scenePath;
+std::string ReportJson::scenePath, ReportJson::setupError;
 Json ReportJson::report;
 
 TEST_F(ReportJson, SettingsAndTheRunAreTheCommandsAndTheScenes) {
