@@ -227,15 +227,11 @@ Status checkObjVertices(const std::string& path, const std::string& text) {
   return {};
 }
 
-}  // namespace
-
-Result<DeformableMesh> loadObj(const std::string& path, double totalMass, const Limits& limits) {
-  if (!(std::isfinite(totalMass) && totalMass > 0))
-    return Error{path + ": total mass must be a positive number of kilograms, got " + formatNumber(totalMass)};
+// Reads and parses an OBJ file within the limits, faces triangulated; errors name the file.
+Status parseObj(const std::string& path, const Limits& limits, tinyobj::ObjReader& reader) {
   Result<std::string> text = readInputFile(path, limits.maxMeshFileBytes, "OBJ file", "Limits::maxMeshFileBytes");
   if (!text) return Error{text.message()};
-  if (Status s = checkObjVertices(path, *text); !s) return Error{s.message()};
-  tinyobj::ObjReader reader;
+  if (Status s = checkObjVertices(path, *text); !s) return s;
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;
   if (!reader.ParseFromString(*text, "", config)) {
@@ -243,6 +239,16 @@ Result<DeformableMesh> loadObj(const std::string& path, double totalMass, const 
     while (!message.empty() && message.back() == '\n') message.pop_back();
     return Error{path + ": " + (message.empty() ? "cannot read the file" : message)};
   }
+  return {};
+}
+
+}  // namespace
+
+Result<DeformableMesh> loadObj(const std::string& path, double totalMass, const Limits& limits) {
+  if (!(std::isfinite(totalMass) && totalMass > 0))
+    return Error{path + ": total mass must be a positive number of kilograms, got " + formatNumber(totalMass)};
+  tinyobj::ObjReader reader;
+  if (Status s = parseObj(path, limits, reader); !s) return Error{s.message()};
   const auto& vertices = reader.GetAttrib().vertices;
   DeformableMesh mesh;
   for (size_t i = 0; i + 2 < vertices.size(); i += 3)
@@ -281,17 +287,8 @@ Result<DeformableMesh> loadObj(const std::string& path, double totalMass, const 
 }
 
 Result<SurfaceMesh> loadObjSurface(const std::string& path, const Limits& limits) {
-  Result<std::string> text = readInputFile(path, limits.maxMeshFileBytes, "OBJ file", "Limits::maxMeshFileBytes");
-  if (!text) return Error{text.message()};
-  if (Status s = checkObjVertices(path, *text); !s) return Error{s.message()};
   tinyobj::ObjReader reader;
-  tinyobj::ObjReaderConfig config;
-  config.triangulate = true;
-  if (!reader.ParseFromString(*text, "", config)) {
-    std::string message = reader.Error();
-    while (!message.empty() && message.back() == '\n') message.pop_back();
-    return Error{path + ": " + (message.empty() ? "cannot read the file" : message)};
-  }
+  if (Status s = parseObj(path, limits, reader); !s) return Error{s.message()};
   const auto& vertices = reader.GetAttrib().vertices;
   SurfaceMesh mesh;
   for (size_t i = 0; i + 2 < vertices.size(); i += 3)
