@@ -1,0 +1,99 @@
+// World::Impl, Stage 3: deformable contacts found once per step, remembered for warm starting and the supports; sleep of the bodies deformables hold.
+// (src/world.cpp runs the stages in order; src/world_impl.h holds the state.)
+#include "world_impl.h"
+
+namespace tandem {
+
+std::vector<CollisionSurface> World::Impl::collisionSurfaces() const {
+  std::vector<CollisionSurface> surfaces;
+  for (const DeformableRecord& body : deformables) {
+    if (!body.collision.enabled) continue;
+    surfaces.push_back({body.firstNode, body.nodeCount, body.surfaceNodes, body.surfaceTriangles,
+                        body.surfaceEdges, body.restMesh.positions, body.collision.thickness,
+                        body.collision.friction, body.collision.selfCollision, body.collision.group,
+                        body.collision.mask});
+  }
+  return surfaces;
+}
+
+void World::Impl::detectDeformableContacts(double h) {
+  const std::vector<CollisionSurface> surfaces = collisionSurfaces();
+  std::vector<CollisionRigid> shapes(bullet.rigidBodyCount());
+  for (int b = 0; b < bullet.rigidBodyCount(); ++b)
+    shapes[b] = {rigidShapes[b].get(),        bullet.position(b),        bullet.orientation(b),
+                 bullet.linearVelocity(b),    bullet.angularVelocity(b), rigidFriction[b],
+                 bullet.mass(b),              rigidGroup[b],             rigidMask[b]};
+  std::unordered_set<uint64_t> anchored;
+  for (const AnchorRow& row : rows.anchors)
+    for (int k = 0; k < 4; ++k)
+      if (row.weight[k] != 0.0) anchored.insert(nodeBodyKey(row.node[k], row.body));
+  rows.contacts.clear();
+  detectContacts(surfaces, nodes, shapes, anchored, h, rows.contacts);
+  for (ContactRow& row : rows.contacts) {
+    row.startGap = row.gap;
+    row.startOffset = row.offset;
+  }
+  // Warm start from last step's impulse on the same feature, friction kept in the new plane.
+  for (ContactRow& row : rows.contacts) {
+    auto previous = previousContacts.find(row.key);
+    if (previous == previousContacts.end()) continue;
+    row.lambdaNormal = previous->second.normal;
+    row.warmFriction = previous->second.friction;
+    row.releasedLastStep = previous->second.releasedFromBlock;
+  }
+  rows.colourContacts(nodes.size(), static_cast<size_t>(bullet.rigidBodyCount()),
+                      [&](int32_t body) { return bullet.isDynamic(body); });
+}
+
+void World::Impl::rememberContacts() {
+  previousContacts.clear();
+  for (const ContactRow& row : rows.contacts)
+    previousContacts[row.key] = {row.lambdaNormal, row.impulse() - row.lambdaNormal * row.normal, row.releasedFromBlock};
+  addHoldImpulsesToSupports();
+  rememberSupports();
+}
+
+void World::Impl::addHoldImpulsesToSupports() {
+  for (const DeformableRecord& body : deformables)
+    for (size_t i = 0; i < body.supports.holdBody.size(); ++i)
+      if (body.supports.holdBody[i] >= 0) rigid[body.supports.holdBody[i]].impulse -= body.supports.holdImpulse[i];
+}
+
+void World::Impl::rememberSupports() {
+  for (DeformableRecord& body : deformables) body.supports.reset(body.firstNode, body.nodeCount);
+  const SolverContext ctx = context();
+  for (const ContactRow& row : rows.contacts) {
+    if (!row.isNodeOnRigid() || rigid[row.body].inverseMass != 0.0) continue;
+    const double surfaceSpeed = row.normal.dot(rigid[row.body].velocityAt(row.offset));
+    const double gapAtEnd = row.gap + substepLength * row.normal.dot(contactRelativeVelocity(row, ctx));
+    DeformableRecord& body = deformables[deformableIndexOfNode(row.node[0])];
+    body.supports.add(row.node[0], row.body, row.normal, gapAtEnd, surfaceSpeed);
+  }
+}
+
+void World::Impl::manageSleepOfHeldBodies() {
+  auto manage = [&](int32_t body, int32_t node) {
+    if (!bullet.isDynamic(body)) return;
+    if (bullet.isAwake(body)) {
+      bullet.restartSleepTimer(body);
+      return;
+    }
+    const DeformableRecord& deformable = deformableOfNode(node);
+    const double threshold = bullet.sleepingThreshold(body);
+    for (int32_t n = deformable.firstNode; n < deformable.firstNode + deformable.nodeCount; ++n)
+      if (nodes.velocity[n].squaredNorm() > threshold * threshold) {
+        bullet.wake(body);
+        return;
+      }
+  };
+  for (const GrabRow& row : rows.grabs)  // a grabbed body is awake
+    if (row.active && row.onRigid()) {
+      bullet.wake(row.body);
+      bullet.restartSleepTimer(row.body);
+    }
+  for (const AnchorRow& row : rows.anchors) manage(row.body, row.node[0]);
+  for (const ContactRow& row : rows.contacts)  // last step's
+    if (row.body >= 0 && row.lambdaNormal > 0) manage(row.body, row.node[0]);
+}
+
+}  // namespace tandem

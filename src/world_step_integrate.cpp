@@ -1,0 +1,92 @@
+// World::Impl, Stage 7: integration of the nodes and the position passes after the substeps.
+// (src/world.cpp runs the stages in order; src/world_impl.h holds the state.)
+#include "world_impl.h"
+
+namespace tandem {
+
+void World::Impl::integrateNodes(double h) {
+  for (size_t i = 0; i < nodes.size(); ++i) nodes.position[i] += h * nodes.velocity[i];
+  pushOutOfContacts();
+  for (FixedPointRow& row : rows.fixedPoints) row.previousTarget = row.target;
+  for (GrabRow& row : rows.grabs) row.previousTarget = row.target;
+}
+
+void World::Impl::pushOutOfContacts() {
+  constexpr double kFraction = 0.2;
+  for (const ContactRow& row : rows.contacts) {
+    const double excess = -(row.gap + settings.solver.contactSlop);
+    if (excess <= 0) continue;
+    double inverseMass = 0.0;
+    for (int k = 0; k < 4; ++k) inverseMass += row.coefficient[k] * row.coefficient[k] * nodes.inverseMass[row.node[k]];
+    if (inverseMass == 0.0) continue;
+    const Vec3 push = (kFraction * excess / inverseMass) * row.normal;
+    for (int k = 0; k < 4; ++k) nodes.position[row.node[k]] += row.coefficient[k] * nodes.inverseMass[row.node[k]] * push;
+  }
+}
+
+void World::Impl::projectDirectBlocks() {
+  unprojected.assign(deformables.size(), 0);
+  for (DirectBlock& block : directBlocks) {
+    if (block.projectPositions(rows, nodes)) continue;
+    for (const DirectBlock::NodeRange& range : block.ranges())
+      unprojected[deformableIndexOfNode(range.first)] = 1;
+  }
+}
+
+void World::Impl::limitStrainOfUnprojectedRows() {
+  std::vector<int32_t> limitedRows;
+  std::vector<char> limited(deformables.size(), 0);
+  for (size_t r = 0; r < rows.inextensibility.size(); ++r) {
+    const InextensibilityRow& row = rows.inextensibility[r];
+    const size_t d = deformableIndexOfNode(row.node[0]);
+    if ((row.inDirectBlock && !unprojected[d]) || !(std::isinf(row.lambdaMin) || std::isinf(row.lambdaMax))) continue;
+    limitedRows.push_back(static_cast<int32_t>(r));
+    limited[d] = 1;
+  }
+  if (limitedRows.empty()) return;
+  // Nodes held to the world (fixed points, anchors to static or kinematic bodies) stay where
+  // their rows put them; the rest move by their inverse masses, so momentum is kept (a node
+  // anchored to a dynamic body that moves is pulled back by its anchor's bias next step).
+  std::vector<double> weight = nodes.inverseMass;
+  for (const FixedPointRow& row : rows.fixedPoints) weight[row.node] = 0.0;
+  for (const AnchorRow& row : rows.anchors)
+    for (int k = 0; k < 4; ++k)
+      if (row.weight[k] != 0.0 && !bullet.isDynamic(row.body)) weight[row.node[k]] = 0.0;
+  // Every node of a body with such rows near a shape the body touched this step is kept out of it.
+  std::vector<CollisionRigid> shapes(bullet.rigidBodyCount());
+  std::vector<std::vector<char>> touched(deformables.size(), std::vector<char>(shapes.size(), 0));
+  for (const ContactRow& row : rows.contacts)
+    if (row.body >= 0) touched[deformableIndexOfNode(row.node[0])][row.body] = 1;
+  std::vector<NodeOnShape> touching;
+  for (size_t d = 0; d < deformables.size(); ++d) {
+    if (!limited[d]) continue;
+    const DeformableRecord& body = deformables[d];
+    // Only nodes near a shape: the passes undo one step's stretch, a few edges' worth.
+    double longestEdge = 0.0;
+    for (const auto& e : body.restMesh.edges)
+      longestEdge = std::max(longestEdge, (body.restMesh.positions[e[1]] - body.restMesh.positions[e[0]]).norm());
+    const double reach = body.collision.thickness + 5 * longestEdge;
+    for (size_t b = 0; b < shapes.size(); ++b) {
+      if (!touched[d][b]) continue;
+      shapes[b] = {rigidShapes[b].get(), bullet.position(int(b)), bullet.orientation(int(b)), Vec3::Zero(),
+                   Vec3::Zero(), 0.0, 0.0};
+      for (int32_t n = body.firstNode; n < body.firstNode + body.nodeCount; ++n) {
+        const Vec3 local = shapes[b].orientation.conjugate() * (nodes.position[n] - shapes[b].position);
+        if (geometry::distanceToShape(*shapes[b].shape, local, reach).distance < reach)
+          touching.push_back({n, &shapes[b], body.collision.thickness});
+      }
+    }
+  }
+  const std::vector<Vec3> before = nodes.position;
+  std::vector<Vec3> pushed(nodes.size(), Vec3::Zero());
+  limitStrain(rows.inextensibility, limitedRows, touching, nodes.position, weight, pushed);
+  for (size_t n = 0; n < nodes.size(); ++n) nodes.velocity[n] += (nodes.position[n] - before[n] - pushed[n]) / timeStep;
+}
+
+void World::Impl::separateCrossingSurfaces(double h) {
+  const ImpactZoneStats stats = separateByImpactZones(collisionSurfaces(), stepStartPositions, nodes, h);
+  report.impactZones = stats.zones;
+  report.impactZoneNodes = stats.zoneNodes;
+}
+
+}  // namespace tandem

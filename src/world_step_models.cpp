@@ -1,0 +1,97 @@
+// World::Impl, Stage 1: the deformable models' unconstrained velocities, their paradigms and damping.
+// (src/world.cpp runs the stages in order; src/world_impl.h holds the state.)
+#include "world_impl.h"
+
+namespace tandem {
+
+void World::Impl::computeUnconstrainedVelocities(double h) {
+  for (Vec3& f : nodes.force) f.setZero();
+  addSpringForces(springs, nodes);
+  for (DeformableRecord& body : deformables) {
+    body.supports.clearHolds();
+    if (body.implicitStep) {
+      solveImplicitVelocities(body.implicit, body.supports, nodes, settings.gravity, h);  // gravity included
+    } else {
+      for (int32_t i = body.firstNode; i < body.firstNode + body.nodeCount; ++i)
+        if (nodes.inverseMass[i] != 0.0)
+          nodes.velocity[i] += h * (settings.gravity + nodes.inverseMass[i] * nodes.force[i]);
+    }
+    dampInternalMotion(body, h);
+    applyParadigm(body, h);
+  }
+}
+
+void World::Impl::applyParadigm(DeformableRecord& body, double h) {
+  if (body.paradigm.type == ParadigmType::MassSpring || body.paradigm.type == ParadigmType::CorotationalFem) return;
+  PositionBasedBody model{body.firstNode,           body.nodeCount,
+                          body.restMesh.positions,  body.paradigmEdges,
+                          body.restMesh.tetrahedra, body.paradigm.stiffness,
+                          body.paradigm.damping,    body.paradigm.iterations,
+                          {},                       {},
+                          {}};
+  // PBD projects its supports as constraints among its own (weighting held nodes in the
+  // projections, as shape matching's fit does, blew a jelly resting on a box up); what they
+  // pushed is the supports' impulse, (1 − γ) m Δ / h per node.
+  if (body.paradigm.type == ParadigmType::PositionBased) {
+    std::vector<SupportPlane> planes;
+    for (int32_t i = 0; i < body.nodeCount; ++i) {
+      const int32_t n = body.firstNode + i;
+      if (body.supports.normal[i].isZero() || nodes.inverseMass[n] == 0.0) continue;
+      const Vec3& normal = body.supports.normal[i];
+      planes.push_back({i, normal, normal.dot(nodes.position[n]) + h * body.supports.targetSpeed(i, h)});
+    }
+    std::vector<double> push(body.nodeCount, 0.0);
+    model.supports = planes;
+    model.supportPush = push;
+    applyPositionBasedDynamics(model, nodes, h);
+    for (const SupportPlane& plane : planes)
+      if (push[plane.node] > 0)
+        body.supports.recordHold(plane.node, (1.0 - body.paradigm.damping) * push[plane.node] /
+                                                 (nodes.inverseMass[body.firstNode + plane.node] * h));
+    return;
+  }
+  constexpr double kHeldWeight = 1000.0;  // how much heavier a held node counts in the fit
+  const std::span<const double> inverseMass(nodes.inverseMass.data() + body.firstNode, body.nodeCount);
+  body.supports.hold(std::span<Vec3>(nodes.velocity.data() + body.firstNode, body.nodeCount), inverseMass, h);
+  std::vector<double> weights(inverseMass.begin(), inverseMass.end());
+  double heldMass = 0.0;
+  for (int32_t i = 0; i < body.nodeCount; ++i) {
+    if (body.supports.holdBody[i] < 0) continue;
+    weights[i] /= kHeldWeight;
+    heldMass += 1.0 / inverseMass[i];
+  }
+  model.weightInverseMass = weights;
+  const Vec3 before = bodyMomentum(body);
+  applyShapeMatching(model, nodes, h);
+  // Weighted towards the held nodes, the fit moves the body's mass centre: that momentum came
+  // through the held nodes from their supports, so it is theirs, by mass.
+  if (heldMass == 0.0) return;
+  const Vec3 transmitted = bodyMomentum(body) - before;
+  for (int32_t i = 0; i < body.nodeCount; ++i)
+    if (body.supports.holdBody[i] >= 0) body.supports.holdImpulse[i] += transmitted / (inverseMass[i] * heldMass);
+}
+
+Vec3 World::Impl::bodyMomentum(const DeformableRecord& body) const {
+  Vec3 momentum = Vec3::Zero();
+  for (int32_t i = body.firstNode; i < body.firstNode + body.nodeCount; ++i)
+    if (nodes.inverseMass[i] > 0) momentum += nodes.velocity[i] / nodes.inverseMass[i];
+  return momentum;
+}
+
+void World::Impl::dampInternalMotion(const DeformableRecord& body, double h) {
+  if (body.damping == 0.0) return;
+  Vec3 momentum = Vec3::Zero();
+  double mass = 0.0;
+  for (int32_t n = body.firstNode; n < body.firstNode + body.nodeCount; ++n)
+    if (nodes.inverseMass[n] > 0) {
+      momentum += nodes.velocity[n] / nodes.inverseMass[n];
+      mass += 1.0 / nodes.inverseMass[n];
+    }
+  if (mass == 0.0) return;
+  const Vec3 mean = momentum / mass;
+  const double fraction = std::min(body.damping * h, 1.0);
+  for (int32_t n = body.firstNode; n < body.firstNode + body.nodeCount; ++n)
+    if (nodes.inverseMass[n] > 0) nodes.velocity[n] -= fraction * (nodes.velocity[n] - mean);
+}
+
+}  // namespace tandem
