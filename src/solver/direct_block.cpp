@@ -363,13 +363,12 @@ void DirectBlock::release(const std::vector<int32_t>& released) {
   m_releasedCoupling.compute(coupling);
 }
 
-Eigen::VectorXd DirectBlock::solveKkt(const Eigen::VectorXd& rhs) const {
-  Eigen::VectorXd z = m_factor->solve(rhs);
-  if (m_releasedRows.empty()) return z;
-  Eigen::VectorXd atReleased(static_cast<Eigen::Index>(m_releasedRows.size()));
-  for (size_t i = 0; i < m_releasedRows.size(); ++i) atReleased[static_cast<Eigen::Index>(i)] = -z[m_releasedRows[i]];
-  z += m_releasedColumns * m_releasedCoupling.solve(atReleased);
-  return z;
+void DirectBlock::solveKkt(const Eigen::VectorXd& rhs, Eigen::VectorXd& z) const {
+  z = m_factor->solve(rhs);
+  if (m_releasedRows.empty()) return;
+  m_atReleased.resize(static_cast<Eigen::Index>(m_releasedRows.size()));
+  for (size_t i = 0; i < m_releasedRows.size(); ++i) m_atReleased[static_cast<Eigen::Index>(i)] = -z[m_releasedRows[i]];
+  z.noalias() += m_releasedColumns * m_releasedCoupling.solve(m_atReleased);
 }
 
 bool DirectBlock::projectPositions(const ConstraintRows& rows, NodeArrays& nodes) {
@@ -392,7 +391,7 @@ bool DirectBlock::projectPositions(const ConstraintRows& rows, NodeArrays& nodes
             -inextensibilityError(nodes.position[row.node[0]], nodes.position[row.node[1]], row.restLength);
     }
   }
-  m_solution = solveKkt(m_rhs);
+  solveKkt(m_rhs, m_solution);
   // Near a singular configuration (a taut flat sheet pinned at its corners) the linearised
   // rows are nearly redundant and a small error asks for a large step: no node moves further
   // than twice the largest error it is correcting.
@@ -452,13 +451,14 @@ void DirectBlock::solve(ConstraintRows& rows, SolverContext& ctx, SweepStats& st
     m_rhs.head(m_dofCount) = m_jacobianT * prescribed;
     for (int32_t r = 0; r < rowCount; ++r)
       m_rhs[m_dofCount + r] = m_active[r] && !m_released[r] ? -(rowVelocity(rows, m_rows[r], ctx) + m_bias[r]) : 0.0;
-    m_solution = solveKkt(m_rhs);
+    solveKkt(m_rhs, m_solution);
     // One step of iterative refinement: the first solve leaves J(v + Δv) + b = E y, a residual
     // of the compliance alone; solving for it again removes all but O(ε²) of it.
     m_rhs.head(m_dofCount).setZero();
     for (int32_t r = 0; r < rowCount; ++r)
       m_rhs[m_dofCount + r] = m_active[r] && !m_released[r] ? -m_compliance[r] * m_solution[m_dofCount + r] : 0.0;
-    m_solution += solveKkt(m_rhs);
+    solveKkt(m_rhs, m_refinement);
+    m_solution += m_refinement;
 
     std::vector<int32_t> released;
     for (size_t r = m_persistentRows; r < m_rows.size(); ++r) {
@@ -585,7 +585,7 @@ void DirectBlock::computeFrictionResponses(const ConstraintRows& rows) {
       applied[t] = impulseOnDofs(row, tangents[t]);
       m_rhs.setZero(m_dofCount + rowCount);
       m_rhs.head(m_dofCount) = applied[t];
-      m_solution = solveKkt(m_rhs);
+      solveKkt(m_rhs, m_solution);
       // As in solve(): velocities from the impulses, M Δv = f + Jᵀ Δλ − h² K Δv (momentum-exact).
       response.impulse[t] = -m_solution.tail(rowCount);
       for (int32_t q = 0; q < rowCount; ++q)

@@ -144,7 +144,8 @@ class DirectBlock {
   std::unique_ptr<Eigen::SimplicialLDLT<SparseMatrix>> m_factor = std::make_unique<Eigen::SimplicialLDLT<SparseMatrix>>();
   bool m_factorOk = false;
   std::vector<int> m_analysedOuter, m_analysedInner;  // the pattern the ordering was computed for
-  Eigen::VectorXd m_rhs, m_solution;
+  Eigen::VectorXd m_rhs, m_solution, m_refinement;
+  mutable Eigen::VectorXd m_atReleased;  // scratch of solveKkt
   Eigen::VectorXd m_velocityChange;    // scratch: of the block's degrees of freedom
   Eigen::VectorXd m_rowImpulseChange;  // scratch: Δλ of the block's rows
   SparseMatrix m_jacobianT;         // Jᵀ: dofs × rows
@@ -190,7 +191,8 @@ class DirectBlock {
   int32_t globalNode(int32_t local) const;
   void factorise();
   void release(const std::vector<int32_t>& rows);
-  Eigen::VectorXd solveKkt(const Eigen::VectorXd& rhs) const;  // with the released rows' equations dropped
+  // z = A⁻¹ rhs, with the released rows' equations dropped; z must not alias rhs.
+  void solveKkt(const Eigen::VectorXd& rhs, Eigen::VectorXd& z) const;
   double rowVelocity(const ConstraintRows& rows, const BlockRowRef& ref, const SolverContext& ctx) const;
 };
 
