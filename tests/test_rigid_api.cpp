@@ -14,8 +14,6 @@
 namespace tandem {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 RigidBodyDesc boxDesc(const std::string& name, const Vec3& halfExtents, double mass, const Vec3& position) {
   RigidBodyDesc desc;
   desc.name = name;
