@@ -4,6 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <string>
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -15,7 +19,8 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path tempDir() {
-  const fs::path dir = fs::temp_directory_path() / "tandem_npz_tests";
+  // One folder per process: ctest runs this file's tests as separate processes side by side.
+  const fs::path dir = fs::temp_directory_path() / ("tandem_npz_tests_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   return dir;
 }

@@ -7,6 +7,10 @@
 #include <tandem/scene_file.h>
 
 #include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <string>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -41,7 +45,8 @@ constexpr const char* kWeakRope = R"({
 })";
 
 fs::path tempDir() {
-  const fs::path dir = fs::temp_directory_path() / "tandem_report_json_tests";
+  // One folder per process: ctest runs this file's tests as separate processes side by side.
+  const fs::path dir = fs::temp_directory_path() / ("tandem_report_json_tests_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   return dir;
 }

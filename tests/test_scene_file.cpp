@@ -7,6 +7,10 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <string>
+
 #include <cstdio>
 #include <sys/wait.h>
 #include <filesystem>
@@ -19,7 +23,8 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path tempDir() {
-  const fs::path dir = fs::temp_directory_path() / "tandem_scene_tests";
+  // One folder per process: ctest runs this file's tests as separate processes side by side.
+  const fs::path dir = fs::temp_directory_path() / ("tandem_scene_tests_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   return dir;
 }
