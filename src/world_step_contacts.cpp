@@ -1,5 +1,6 @@
-// World::Impl, Stage 3: deformable contacts found once per step, remembered for warm starting and the supports; sleep of the bodies deformables hold.
-// (src/world.cpp runs the stages in order; src/world_impl.h holds the state.)
+// World::Impl, stage 3: deformable contacts found once per step, remembered for warm starting and
+// the supports; sleep of the bodies deformables hold. (src/world.cpp runs the stages in order;
+// src/world_impl.h holds the state.)
 #include "world_impl.h"
 
 namespace tandem {

@@ -1,4 +1,4 @@
-// World::Impl, Stage 7: integration of the nodes and the position passes after the substeps.
+// World::Impl, stage 7: integration of the nodes and the position passes after the substeps.
 // (src/world.cpp runs the stages in order; src/world_impl.h holds the state.)
 #include "world_impl.h"
 

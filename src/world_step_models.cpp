@@ -1,5 +1,5 @@
-// World::Impl, Stage 1: the deformable models' unconstrained velocities, their paradigms and damping.
-// (src/world.cpp runs the stages in order; src/world_impl.h holds the state.)
+// World::Impl, stage 1: the deformable models' unconstrained velocities, their paradigms and
+// damping. (src/world.cpp runs the stages in order; src/world_impl.h holds the state.)
 #include "world_impl.h"
 
 namespace tandem {

@@ -1,5 +1,5 @@
-// World::Impl, Stage 8: the rows left violated, and divergence.
-// (src/world.cpp runs the stages in order; src/world_impl.h holds the state.)
+// World::Impl, stage 8: the rows left violated, and divergence. (src/world.cpp runs the stages in
+// order; src/world_impl.h holds the state.)
 #include "world_impl.h"
 
 namespace tandem {

@@ -1,5 +1,6 @@
-// World::Impl, Stage 4 and 5: the rows prepared, the direct blocks built, and the interleaved solve Bullet calls back into.
-// (src/world.cpp runs the stages in order; src/world_impl.h holds the state.)
+// World::Impl, stage 4 and 5: the rows prepared, the direct blocks built, and the interleaved solve
+// Bullet calls back into. (src/world.cpp runs the stages in order; src/world_impl.h holds the
+// state.)
 #include "world_impl.h"
 
 namespace tandem {

@@ -1,5 +1,6 @@
-// World::Impl, The step's start and its substeps' starts and ends: start-of-step state, the models' velocity change given out per substep, moving targets, impulse sums.
-// (src/world.cpp runs the stages in order; src/world_impl.h holds the state.)
+// World::Impl: the step's start and its substeps' starts and ends: start-of-step state, the models'
+// velocity change given out per substep, moving targets, impulse sums. (src/world.cpp runs the
+// stages in order; src/world_impl.h holds the state.)
 #include "world_impl.h"
 
 namespace tandem {
