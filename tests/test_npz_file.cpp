@@ -4,9 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include <unistd.h>
-
-#include <string>
+#include "process_temp_folder.h"
 
 #include <cstdio>
 #include <filesystem>
@@ -18,12 +16,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path tempDir() {
-  // One folder per process: ctest runs this file's tests as separate processes side by side.
-  const fs::path dir = fs::temp_directory_path() / ("tandem_npz_tests_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path tempDir() { return processTempFolder("tandem_npz_tests"); }
 
 std::string runPython(const std::string& name, const std::string& script, int& status) {
   const fs::path file = tempDir() / (name + ".py");  // one per test: ctest runs them at once

@@ -7,11 +7,9 @@
 #include <tandem/scene_file.h>
 
 #include <gtest/gtest.h>
-
-#include <unistd.h>
-
-#include <string>
 #include <nlohmann/json.hpp>
+
+#include "process_temp_folder.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -44,12 +42,7 @@ constexpr const char* kWeakRope = R"({
   "anchors": [ { "deformable": "weak rope", "node": 10, "body": "heavy box" } ]
 })";
 
-fs::path tempDir() {
-  // One folder per process: ctest runs this file's tests as separate processes side by side.
-  const fs::path dir = fs::temp_directory_path() / ("tandem_report_json_tests_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path tempDir() { return processTempFolder("tandem_report_json_tests"); }
 
 // Runs the command; returns its exit status and its output (stdout and stderr).
 int runCommand(const std::string& arguments, std::string& output) {

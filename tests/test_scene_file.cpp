@@ -7,9 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include <unistd.h>
-
-#include <string>
+#include "process_temp_folder.h"
 
 #include <cstdio>
 #include <sys/wait.h>
@@ -22,12 +20,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path tempDir() {
-  // One folder per process: ctest runs this file's tests as separate processes side by side.
-  const fs::path dir = fs::temp_directory_path() / ("tandem_scene_tests_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path tempDir() { return processTempFolder("tandem_scene_tests"); }
 
 std::string writeFile(const std::string& name, const std::string& text) {
   const fs::path path = tempDir() / name;
