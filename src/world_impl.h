@@ -109,6 +109,7 @@ struct World::Impl final : bullet::SolverHooks {
   };
   std::vector<TargetPath> fixedPointPaths, grabPaths;
   std::unordered_map<uint64_t, ContactImpulse> previousContacts;  // by feature, for warm starting
+  std::vector<char> supportAssigned;  // per node: scratch of detectDeformableContacts
 
   StepReport report;
   double time = 0.0;

@@ -42,6 +42,17 @@ void World::Impl::detectDeformableContacts(double h) {
     row.warmFriction = previous->second.friction;
     row.releasedLastStep = previous->second.releasedFromBlock;
   }
+  // A node its model held on a support carries that load there too: it bounds the friction of
+  // its contact with that body (its first, where one node touches the body at several points).
+  supportAssigned.assign(nodes.size(), 0);
+  for (ContactRow& row : rows.contacts) {
+    if (!row.isNodeOnRigid() || supportAssigned[row.node[0]]) continue;
+    const DeformableRecord& body = deformables[deformableIndexOfNode(row.node[0])];
+    const auto i = static_cast<size_t>(row.node[0] - body.firstNode);
+    if (body.supports.holdBody.size() <= i || body.supports.holdBody[i] != row.body) continue;
+    row.supportImpulse = std::max(0.0, body.supports.holdImpulse[i].dot(row.normal)) / settings.solver.substeps;
+    supportAssigned[row.node[0]] = 1;
+  }
   rows.colourContacts(nodes.size(), static_cast<size_t>(bullet.rigidBodyCount()),
                       [&](int32_t body) { return bullet.isDynamic(body); });
 }

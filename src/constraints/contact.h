@@ -29,9 +29,13 @@
 // Friction: two tangent rows on t₁, t₂ ⟂ n, solved as one 2×2 block on the tangential
 // relative velocity (t₁ along it when it is not tiny, as in the paper's eq. 27–28), with the
 // accumulated tangential impulse clamped to a disc (an isotropic cone):
-//   Coulomb (default):  |λₜ| ≤ μ λₙ           — right for any contact, whatever pushes it
+//   Coulomb (default):  |λₜ| ≤ μ (λₙ + s)     — right for any contact, whatever pushes it
 //   pressure (paper):   |λₜ| ≤ μ m |g · n| h  — the paper's eq. 32, m the contact's mass
-// μ is the product of the two sides' friction coefficients, as in Bullet.
+// μ is the product of the two sides' friction coefficients, as in Bullet. s is the normal
+// impulse the node's model already took from this surface in the substep (its support hold,
+// models/supports.h): a jelly's models hold its resting nodes on the ground themselves, so the
+// contact rows carry almost none of its weight, and bounded by λₙ alone the friction of a jelly
+// on a 15° slope was nil (it slid at g sin θ); with s the surface's whole push bounds it.
 //
 // The impulse is a vector P = λₙ n + λₜ on side A: node k gets cₖ mₖ⁻¹ P, the rigid body −P
 // at r. Equal and opposite by construction.
@@ -69,6 +73,9 @@ struct ContactRow {
   double bias = 0.0;
   double pressureBound = 0.0;              // μ m |g·n| h, for the pressure model
   double lambdaNormal = 0.0;               // N·s, ≥ 0
+  // The part of the node's normal load its model's support hold already carried in this
+  // substep (models/supports.h): the surface pushes with it too, so it bounds friction as λₙ does.
+  double supportImpulse = 0.0;
   Eigen::Vector2d lambdaTangent = Eigen::Vector2d::Zero();
   double stepNormalImpulse = 0.0;          // summed over the step's substeps: what is reported
   Vec3 stepFrictionImpulse = Vec3::Zero();
@@ -155,7 +162,8 @@ inline Eigen::Vector2d frictionImpulse(const ContactRow& row, FrictionModel mode
   const Vec3 v = contactRelativeVelocity(row, ctx);
   const Eigen::Vector2d tangential(v.dot(row.tangent1), v.dot(row.tangent2));
   Eigen::Vector2d lambda = row.lambdaTangent - tangentMass * tangential;
-  const double bound = model == FrictionModel::Coulomb ? row.friction * row.lambdaNormal : row.pressureBound;
+  const double bound =
+      model == FrictionModel::Coulomb ? row.friction * (row.lambdaNormal + row.supportImpulse) : row.pressureBound;
   if (lambda.norm() > bound) lambda *= bound / lambda.norm();
   return lambda;
 }

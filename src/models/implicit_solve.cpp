@@ -83,6 +83,25 @@ void solveImplicitVelocities(ImplicitBody& body, Supports& supports, NodeArrays&
     for (int32_t i = 0; i < count; ++i)
       out[i] = free(i) ? Vec3(y[i] / nodes.inverseMass[first + i] + scratch[i]) : Vec3::Zero();
   };
+  // Jacobi preconditioner: P = diag(m + h² tr(−K_ii)/3 + tr(h² K_s + h D_s)/3) per node, elements'
+  // and springs' blocks.
+  if (body.stiffnessDiagonal.size() != static_cast<size_t>(count)) {
+    body.stiffnessDiagonal.assign(count, 0.0);
+    std::vector<NodePairStiffness> pairs;
+    addFemStiffnessBlocks(body.fem, rotations, 1.0, pairs);
+    for (const NodePairStiffness& pair : pairs)
+      if (pair.nodeA == pair.nodeB) body.stiffnessDiagonal[pair.nodeA - first] += pair.k.trace() / 3.0;
+  }
+  std::vector<double> preconditioner(count, 0.0);
+  for (int32_t i = 0; i < count; ++i)
+    if (free(i)) preconditioner[i] = 1.0 / nodes.inverseMass[first + i] + h * h * body.stiffnessDiagonal[i];
+  for (size_t s = 0; s < springs.size(); ++s) {
+    const double k = (h * h * blocks[s].stiffness + h * blocks[s].damping).trace() / 3.0;
+    for (int32_t node : {springs[s].nodeA, springs[s].nodeB})
+      if (free(node)) preconditioner[node] += k;
+  }
+  for (double& d : preconditioner) d = d > 0.0 ? 1.0 / d : 0.0;
+
   // b = h (f + f_ext + m g) + h² K v
   std::vector<Vec3> b(count), kv;
   negativeStiffness(velocity, kv, false);
@@ -102,14 +121,15 @@ void solveImplicitVelocities(ImplicitBody& body, Supports& supports, NodeArrays&
     held[i] = n;
     heldChange[i] = target - n.dot(nodes.velocity[first + i]);
   }
-  // Filtered conjugate gradients from last step's Δv: S takes out the held normal components.
+  // Filtered conjugate gradients (Baraff and Witkin 1998), Jacobi-preconditioned, from last step's
+  // Δv: S takes out the held normal components.
   auto filter = [&](std::vector<Vec3>& y) {
     for (int32_t i = 0; i < count; ++i) y[i] -= held[i].dot(y[i]) * held[i];
   };
   std::vector<Vec3>& x = body.previousStep;
   for (int32_t i = 0; i < count; ++i)
     if (!free(i)) x[i].setZero();
-  std::vector<Vec3> r(count), p, ap;
+  std::vector<Vec3> r(count), z(count), p, ap;
   double bNorm = 0.0;
   for (const Vec3& bi : b) bNorm += bi.squaredNorm();
   int iteration = 0;
@@ -118,25 +138,34 @@ void solveImplicitVelocities(ImplicitBody& body, Supports& supports, NodeArrays&
     apply(x, ap);
     for (int32_t i = 0; i < count; ++i) r[i] = b[i] - ap[i];
     filter(r);
+    auto precondition = [&]() {  // z = S P⁻¹ r, and returns r·z
+      double rz = 0.0;
+      for (int32_t i = 0; i < count; ++i) z[i] = preconditioner[i] * r[i];
+      filter(z);
+      for (int32_t i = 0; i < count; ++i) rz += r[i].dot(z[i]);
+      return rz;
+    };
     double rr = 0.0;
     for (const Vec3& ri : r) rr += ri.squaredNorm();
-    p = r;
+    double rz = precondition();
+    p = z;
     for (; iteration < kMaxIterations && rr > kRelativeTolerance * kRelativeTolerance * bNorm; ++iteration) {
       apply(p, ap);
       filter(ap);
       double pap = 0.0;
       for (int32_t i = 0; i < count; ++i) pap += p[i].dot(ap[i]);
       if (pap <= 0) break;  // not positive definite: should not happen, stop rather than diverge
-      const double alpha = rr / pap;
-      double next = 0.0;
+      const double alpha = rz / pap;
+      rr = 0.0;
       for (int32_t i = 0; i < count; ++i) {
         x[i] += alpha * p[i];
         r[i] -= alpha * ap[i];
-        next += r[i].squaredNorm();
+        rr += r[i].squaredNorm();
       }
-      const double beta = next / rr;
-      rr = next;
-      for (int32_t i = 0; i < count; ++i) p[i] = r[i] + beta * p[i];
+      const double next = precondition();
+      const double beta = next / rz;
+      rz = next;
+      for (int32_t i = 0; i < count; ++i) p[i] = z[i] + beta * p[i];
     }
     // Let go of holds that pull (c = A Δv − b against the normal), and solve again if any did.
     apply(x, ap);

@@ -36,6 +36,9 @@ struct ImplicitBody {
   std::vector<EdgeSpring> springs;  // global indices
   std::vector<Vec3> previousStep;   // last step's Δv, the solve's starting guess (local indices)
   std::vector<Mat3> rotations;      // of each element at this step's positions, from the solve
+  // Per node (local): a third of the trace of its diagonal block of −K from the elements (a
+  // rotation leaves it unchanged), for the solve's Jacobi preconditioner; made at the first solve.
+  std::vector<double> stiffnessDiagonal;
   int lastIterations = 0;  // conjugate-gradient iterations of the last step
 };
 

@@ -8,8 +8,9 @@
 // surface's normal n a node gets the normal velocity the contact will give it, the surface's
 // w·n less the gap to close in this step,
 //   v*·n = w·n − max(gap, 0) / h,    held only if its free motion would go further.
-// The support carries the hold's impulse c: it is kept per node (holdImpulse) and reported as
-// part of the node's contact with that surface and of the surface's impulse from deformables.
+// The support carries the hold's impulse c: it is kept per node (holdImpulse), reported as
+// part of the node's contact with that surface and of the surface's impulse from deformables,
+// and it bounds that contact's friction with the contact's own λₙ (constraints/contact.h).
 #pragma once
 
 #include <tandem/types.h>
