@@ -64,11 +64,25 @@ void World::Impl::applyParadigm(DeformableRecord& body, double h) {
   const Vec3 before = bodyMomentum(body);
   applyShapeMatching(model, nodes, h);
   // Weighted towards the held nodes, the fit moves the body's mass centre: that momentum came
-  // through the held nodes from their supports, so it is theirs, by mass.
+  // through the held nodes from their supports, so it is theirs, by mass. Along each support's
+  // normal; along the surface it would be a friction with no bound (a shape-matched cube held on
+  // a 40° slope with μ = 0.5), so that part goes back to the whole body, and the contacts'
+  // friction, bounded by μ (λₙ + hold) (constraints/contact.h), decides whether it slides.
   if (heldMass == 0.0) return;
   const Vec3 transmitted = bodyMomentum(body) - before;
+  Vec3 alongSurfaces = Vec3::Zero();
+  double bodyMass = 0.0;
+  for (int32_t i = 0; i < body.nodeCount; ++i) {
+    if (inverseMass[i] == 0.0) continue;
+    bodyMass += 1.0 / inverseMass[i];
+    if (body.supports.holdBody[i] < 0) continue;
+    const Vec3 share = transmitted / (inverseMass[i] * heldMass);
+    const Vec3& normal = body.supports.normal[i];
+    body.supports.holdImpulse[i] += share.dot(normal) * normal;
+    alongSurfaces += share - share.dot(normal) * normal;
+  }
   for (int32_t i = 0; i < body.nodeCount; ++i)
-    if (body.supports.holdBody[i] >= 0) body.supports.holdImpulse[i] += transmitted / (inverseMass[i] * heldMass);
+    if (inverseMass[i] != 0.0) nodes.velocity[body.firstNode + i] -= alongSurfaces / bodyMass;
 }
 
 Vec3 World::Impl::bodyMomentum(const DeformableRecord& body) const {

@@ -272,10 +272,11 @@ const SoakCase kCases[] = {
     {"rope_wheel.json", 20.0, 6.0, {{"heavy", 0.66e-3}, {"light", 1.42e-3}, {"wheel", 0.029e-3}, {"rope", 0.34e-3}}},
     {"cloth_sphere.json", 20.0, 8.0, {{"cloth", 0.43e-3}}},
     // jelly_dish re-measured when friction came to be bounded by the supports' load as well
-    // (constraints/contact.h): the FEM jelly crept 1.14 mm/s, the PBD one 0.48, the bar 0.32.
+    // (constraints/contact.h): the FEM jelly crept 1.14 mm/s, the PBD one 0.48, the bar 0.32; and
+    // when shape matching's fit stopped holding along the supports (0.0011 mm/s before).
     {"jelly_dish.json", 20.0, 8.0,
-     {{"chocolate bar", 0.41e-3}, {"mass-spring jelly", 0.114e-3}, {"FEM jelly", 0.052e-3}, {"PBD jelly", 0.0076e-3},
-      {"shape-matching jelly", 0.0023e-3}}},
+     {{"chocolate bar", 0.41e-3}, {"mass-spring jelly", 0.119e-3}, {"FEM jelly", 0.056e-3}, {"PBD jelly", 0.0117e-3},
+      {"shape-matching jelly", 0.0344e-3}}},
 };
 
 INSTANTIATE_TEST_SUITE_P(PaperScenes, Soak, testing::ValuesIn(kCases), [](const testing::TestParamInfo<SoakCase>& param) {
