@@ -102,14 +102,24 @@ struct World::Impl final : bullet::SolverHooks {
   std::vector<Vec3> stepStartPositions;  // node positions before this step moved them
   std::vector<Vec3> stepStartVelocities;  // and their velocities before the models changed them
   std::vector<Vec3> modelVelocityChange;  // per node: what the models add over the step, per substep
-  std::vector<RigidPose> stepStartPoses;
-  std::vector<CollisionRigid> substepShapes;  // rigid shapes in their pose at a substep's start  // rigid bodies before this step moved them
+  std::vector<RigidPose> stepStartPoses;       // rigid bodies before this step moved them
+  std::vector<CollisionRigid> substepShapes;  // rigid shapes in their pose at a substep's start
   struct TargetPath {
     Vec3 from, to;  // where a moving target is at the step's start and end
   };
   std::vector<TargetPath> fixedPointPaths, grabPaths;
   std::unordered_map<uint64_t, ContactImpulse> previousContacts;  // by feature, for warm starting
   std::vector<char> supportAssigned;  // per node: scratch of detectDeformableContacts
+  // Scratch of limitStrainOfUnprojectedRows, kept so that the step allocates nothing once grown.
+  struct StrainLimitingScratch {
+    std::vector<int32_t> rows;           // the rows limited
+    std::vector<char> limitedBody;       // per deformable: has some
+    std::vector<double> weight;          // per node: its inverse mass in the passes, 0 if held
+    std::vector<CollisionRigid> shapes;  // per rigid body touched: its shape where it is
+    std::vector<char> touched;           // per deformable × rigid body
+    std::vector<NodeOnShape> touching;   // nodes kept out of those shapes
+    std::vector<Vec3> before, pushed;    // per node
+  } strainScratch;
 
   StepReport report;
   double time = 0.0;

@@ -34,53 +34,56 @@ void World::Impl::projectDirectBlocks() {
 }
 
 void World::Impl::limitStrainOfUnprojectedRows() {
-  std::vector<int32_t> limitedRows;
-  std::vector<char> limited(deformables.size(), 0);
+  StrainLimitingScratch& scratch = strainScratch;
+  scratch.rows.clear();
+  scratch.limitedBody.assign(deformables.size(), 0);
   for (size_t r = 0; r < rows.inextensibility.size(); ++r) {
     const InextensibilityRow& row = rows.inextensibility[r];
     const size_t d = deformableIndexOfNode(row.node[0]);
     if ((row.inDirectBlock && !unprojected[d]) || !(std::isinf(row.lambdaMin) || std::isinf(row.lambdaMax))) continue;
-    limitedRows.push_back(static_cast<int32_t>(r));
-    limited[d] = 1;
+    scratch.rows.push_back(static_cast<int32_t>(r));
+    scratch.limitedBody[d] = 1;
   }
-  if (limitedRows.empty()) return;
+  if (scratch.rows.empty()) return;
   // Nodes held to the world (fixed points, anchors to static or kinematic bodies) stay where
   // their rows put them; the rest move by their inverse masses, so momentum is kept (a node
   // anchored to a dynamic body that moves is pulled back by its anchor's bias next step).
-  std::vector<double> weight = nodes.inverseMass;
-  for (const FixedPointRow& row : rows.fixedPoints) weight[row.node] = 0.0;
+  scratch.weight = nodes.inverseMass;
+  for (const FixedPointRow& row : rows.fixedPoints) scratch.weight[row.node] = 0.0;
   for (const AnchorRow& row : rows.anchors)
     for (int k = 0; k < 4; ++k)
-      if (row.weight[k] != 0.0 && !bullet.isDynamic(row.body)) weight[row.node[k]] = 0.0;
+      if (row.weight[k] != 0.0 && !bullet.isDynamic(row.body)) scratch.weight[row.node[k]] = 0.0;
   // Every node of a body with such rows near a shape the body touched this step is kept out of it.
-  std::vector<CollisionRigid> shapes(bullet.rigidBodyCount());
-  std::vector<std::vector<char>> touched(deformables.size(), std::vector<char>(shapes.size(), 0));
+  const auto bodyCount = static_cast<size_t>(bullet.rigidBodyCount());
+  scratch.shapes.assign(bodyCount, CollisionRigid{});
+  scratch.touched.assign(deformables.size() * bodyCount, 0);
   for (const ContactRow& row : rows.contacts)
-    if (row.body >= 0) touched[deformableIndexOfNode(row.node[0])][row.body] = 1;
-  std::vector<NodeOnShape> touching;
+    if (row.body >= 0) scratch.touched[deformableIndexOfNode(row.node[0]) * bodyCount + static_cast<size_t>(row.body)] = 1;
+  scratch.touching.clear();
   for (size_t d = 0; d < deformables.size(); ++d) {
-    if (!limited[d]) continue;
+    if (!scratch.limitedBody[d]) continue;
     const DeformableRecord& body = deformables[d];
     // Only nodes near a shape: the passes undo one step's stretch, a few edges' worth.
     double longestEdge = 0.0;
     for (const auto& e : body.restMesh.edges)
       longestEdge = std::max(longestEdge, (body.restMesh.positions[e[1]] - body.restMesh.positions[e[0]]).norm());
     const double reach = body.collision.thickness + 5 * longestEdge;
-    for (size_t b = 0; b < shapes.size(); ++b) {
-      if (!touched[d][b]) continue;
-      shapes[b] = {rigidShapes[b].get(), bullet.position(int(b)), bullet.orientation(int(b)), Vec3::Zero(),
-                   Vec3::Zero(), 0.0, 0.0};
+    for (size_t b = 0; b < bodyCount; ++b) {
+      if (!scratch.touched[d * bodyCount + b]) continue;
+      CollisionRigid& shape = scratch.shapes[b];
+      shape = {rigidShapes[b].get(), bullet.position(int(b)), bullet.orientation(int(b)), Vec3::Zero(), Vec3::Zero(), 0.0, 0.0};
       for (int32_t n = body.firstNode; n < body.firstNode + body.nodeCount; ++n) {
-        const Vec3 local = shapes[b].orientation.conjugate() * (nodes.position[n] - shapes[b].position);
-        if (geometry::distanceToShape(*shapes[b].shape, local, reach).distance < reach)
-          touching.push_back({n, &shapes[b], body.collision.thickness});
+        const Vec3 local = shape.orientation.conjugate() * (nodes.position[n] - shape.position);
+        if (geometry::distanceToShape(*shape.shape, local, reach).distance < reach)
+          scratch.touching.push_back({n, &shape, body.collision.thickness});
       }
     }
   }
-  const std::vector<Vec3> before = nodes.position;
-  std::vector<Vec3> pushed(nodes.size(), Vec3::Zero());
-  limitStrain(rows.inextensibility, limitedRows, touching, nodes.position, weight, pushed);
-  for (size_t n = 0; n < nodes.size(); ++n) nodes.velocity[n] += (nodes.position[n] - before[n] - pushed[n]) / timeStep;
+  scratch.before = nodes.position;
+  scratch.pushed.assign(nodes.size(), Vec3::Zero());
+  limitStrain(rows.inextensibility, scratch.rows, scratch.touching, nodes.position, scratch.weight, scratch.pushed);
+  for (size_t n = 0; n < nodes.size(); ++n)
+    nodes.velocity[n] += (nodes.position[n] - scratch.before[n] - scratch.pushed[n]) / timeStep;
 }
 
 void World::Impl::separateCrossingSurfaces(double h) {
