@@ -312,6 +312,16 @@ double minimumTetVolume(const DeformableMesh& mesh, std::span<const Vec3> x) {
   return smallest;
 }
 
+// Test names for the parametrised suites.
+std::string paradigmName(const ::testing::TestParamInfo<ParadigmType>& param) {
+  switch (param.param) {
+    case ParadigmType::MassSpring: return "MassSpring";
+    case ParadigmType::ShapeMatching: return "ShapeMatching";
+    case ParadigmType::PositionBased: return "PositionBased";
+    default: return "CorotationalFem";
+  }
+}
+
 class JellyDrop : public ::testing::TestWithParam<ParadigmType> {};
 
 TEST_P(JellyDrop, SettlesIntoItsShapeOnTheGround) {
@@ -369,14 +379,7 @@ TEST_P(JellyDrop, SettlesIntoItsShapeOnTheGround) {
 
 INSTANTIATE_TEST_SUITE_P(Paradigms, JellyDrop, ::testing::Values(ParadigmType::MassSpring, ParadigmType::ShapeMatching,
                                                              ParadigmType::PositionBased, ParadigmType::CorotationalFem),
-                         [](const ::testing::TestParamInfo<ParadigmType>& param) {
-                           switch (param.param) {
-                             case ParadigmType::MassSpring: return std::string("MassSpring");
-                             case ParadigmType::ShapeMatching: return std::string("ShapeMatching");
-                             case ParadigmType::PositionBased: return std::string("PositionBased");
-                             default: return std::string("CorotationalFem");
-                           }
-                         });
+                         paradigmName);
 
 // A 10 cm jelly cube (0.5 kg) of each paradigm on the ground, with gravity tilted by θ: a slope
 // of θ with μ = 0.5 (the ground's 0.5 times the jelly's 1). Its mean velocity along the slope
@@ -391,12 +394,7 @@ SlopeRun jellyOnSlope(ParadigmType paradigm, double degrees) {
   const double theta = degrees * kPi / 180;
   settings.gravity = kGravity * Vec3(std::sin(theta), -std::cos(theta), 0);
   EXPECT_TRUE(world.setSettings(settings).ok());
-  RigidBodyDesc ground;
-  ground.name = "ground";
-  ground.shape = RigidShape::plane({0, 1, 0}, 0.0);
-  ground.motion = MotionType::Static;
-  ground.friction = 0.5;
-  EXPECT_TRUE(world.addRigidBody(ground).ok());
+  addGround(world);  // friction 0.5, a rigid body's default
   DeformableDesc jelly;
   jelly.name = "jelly";
   jelly.mesh = *makeTetBox({-0.05, 0.005, -0.05}, {0.05, 0.105, 0.05}, 3, 3, 3, 0.5);
@@ -450,13 +448,7 @@ TEST_P(JellyOnSlope, SlidesAboveTheFrictionAngle) {
 INSTANTIATE_TEST_SUITE_P(Paradigms, JellyOnSlope,
                          ::testing::Values(ParadigmType::ShapeMatching, ParadigmType::PositionBased,
                                            ParadigmType::CorotationalFem),
-                         [](const ::testing::TestParamInfo<ParadigmType>& param) {
-                           switch (param.param) {
-                             case ParadigmType::ShapeMatching: return std::string("ShapeMatching");
-                             case ParadigmType::PositionBased: return std::string("PositionBased");
-                             default: return std::string("CorotationalFem");
-                           }
-                         });
+                         paradigmName);
 
 // Jellies of different paradigms on a rigid plate, with a 1 kg bar lying across them: after
 // 3 s everything rests and the bar lies on the jellies, not sunk into them. PBD is left out
