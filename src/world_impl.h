@@ -98,6 +98,10 @@ struct World::Impl final : bullet::SolverHooks {
   ConstraintRows rows;
   std::vector<DirectBlock> directBlocks;
   bool directBlocksStale = true;  // rows were added since the blocks were built
+  // Pairs (dynamic rigid body, deformable) in touch at the step's start, sorted: blocks whose
+  // deformables touch one body are solved as one (buildDirectBlocks); when the pairs change,
+  // the blocks are built again.
+  std::vector<std::pair<int32_t, int32_t>> bodyContacts, bodyContactsScratch;
   std::vector<char> unprojected;  // per deformable: in a block that could not project this step
   std::vector<Vec3> stepStartPositions;  // node positions before this step moved them
   std::vector<Vec3> stepStartVelocities;  // and their velocities before the models changed them
@@ -168,6 +172,7 @@ struct World::Impl final : bullet::SolverHooks {
 
   void detectDeformableContacts(double h);
 
+  void noteBodyContacts();
   void rememberContacts();
 
   // The supports carried their holds' impulses (models/supports.h): on the report of the

@@ -53,8 +53,24 @@ void World::Impl::detectDeformableContacts(double h) {
     row.supportImpulse = std::max(0.0, body.supports.holdImpulse[i].dot(row.normal)) / settings.solver.substeps;
     supportAssigned[row.node[0]] = 1;
   }
+  noteBodyContacts();
   rows.colourContacts(nodes.size(), static_cast<size_t>(bullet.rigidBodyCount()),
                       [&](int32_t body) { return bullet.isDynamic(body); });
+}
+
+void World::Impl::noteBodyContacts() {
+  std::vector<std::pair<int32_t, int32_t>>& pairs = bodyContactsScratch;
+  pairs.clear();
+  for (const ContactRow& row : rows.contacts) {
+    const bool touching = row.gap <= settings.solver.contactSlop || row.lambdaNormal > 0.0;
+    if (row.body >= 0 && touching && bullet.isDynamic(row.body))
+      pairs.emplace_back(row.body, static_cast<int32_t>(deformableIndexOfNode(row.node[0])));
+  }
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  if (pairs == bodyContacts) return;
+  std::swap(bodyContacts, pairs);
+  directBlocksStale = true;
 }
 
 void World::Impl::rememberContacts() {

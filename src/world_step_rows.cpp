@@ -26,12 +26,23 @@ void World::Impl::prepareRows(double h) {
 
 void World::Impl::buildDirectBlocks() {
   directBlocks.clear();
+  const auto count = static_cast<int32_t>(deformables.size());
   std::vector<int32_t> group(deformables.size());
-  for (size_t d = 0; d < group.size(); ++d) group[d] = static_cast<int32_t>(d);
+  for (int32_t d = 0; d < count; ++d) group[d] = d;
   auto root = [&](int32_t d) {
     while (group[d] != d) d = group[d] = group[group[d]];
     return d;
   };
+  auto membersOf = [&](int32_t d) {
+    std::vector<int32_t> members;
+    for (int32_t member = 0; member < count; ++member)
+      if (root(member) == d) members.push_back(member);
+    return members;
+  };
+  auto isChain = [&](int32_t d) {
+    return deformables[d].restMesh.triangles.empty() && deformables[d].restMesh.tetrahedra.empty();
+  };
+  // Deformables anchored to one dynamic body are one group.
   std::vector<int32_t> firstDeformableOnBody(bullet.rigidBodyCount(), -1);
   for (const AnchorRow& row : rows.anchors) {
     const auto deformable = static_cast<int32_t>(deformableIndexOfNode(row.node[0]));
@@ -42,26 +53,57 @@ void World::Impl::buildDirectBlocks() {
     else
       group[root(deformable)] = root(other);
   }
-  for (size_t d = 0; d < deformables.size(); ++d) {
-    if (root(static_cast<int32_t>(d)) != static_cast<int32_t>(d)) continue;
-    std::vector<DirectBlock::NodeRange> ranges;
+  // Which of those groups are solved directly; which have no rows at all (free nodes).
+  enum class Role : char { Swept, Direct, Free };
+  std::vector<Role> role(deformables.size(), Role::Swept);
+  for (int32_t d = 0; d < count; ++d) {
+    if (root(d) != d) continue;
     // Ropes (no faces, no tetrahedra) are chains: their block's factorisation costs time linear
     // in their length, so they are direct at any length. Surfaces and solids fill in.
     bool forced = false, allowed = true, elastic = false, chains = true;
-    for (size_t member = 0; member < deformables.size(); ++member) {
-      if (root(static_cast<int32_t>(member)) != static_cast<int32_t>(d)) continue;
+    std::vector<DirectBlock::NodeRange> ranges;
+    const std::vector<int32_t> members = membersOf(d);
+    for (int32_t member : members) {
       const DeformableRecord& record = deformables[member];
       forced |= record.rowSolver == RowSolverKind::Direct;
       allowed &= record.rowSolver != RowSolverKind::Iterative;
       elastic |= record.implicitStep;
-      chains &= record.restMesh.triangles.empty() && record.restMesh.tetrahedra.empty();
+      chains &= isChain(member);
       ranges.push_back({record.firstNode, record.nodeCount});
     }
     if (!allowed) continue;
     DirectBlock block(std::move(ranges), chains);
     block.collectRows(rows);
-    if (!elastic && (block.scalarRowCount() == 0 || (!forced && !chains && block.scalarRowCount() > kAutoDirectRowLimit)))
-      continue;
+    const int32_t rowCount = block.scalarRowCount();
+    const Role groupRole = elastic || (rowCount > 0 && (forced || chains || rowCount <= kAutoDirectRowLimit))
+                               ? Role::Direct
+                               : (rowCount == 0 ? Role::Free : Role::Swept);
+    for (int32_t member : members) role[member] = groupRole;
+  }
+  // Direct groups touching one dynamic body at the step's start are one block, with the bodies
+  // of free nodes touching it: solved apart, in turns, each held the body up alone and they never
+  // agreed within K iterations (a bar resting on four jellies rocked and slid on them at
+  // 0.4 mm/s, docs/solver.md).
+  for (size_t first = 0, end; first < bodyContacts.size(); first = end) {
+    int32_t direct = -1;
+    for (end = first; end < bodyContacts.size() && bodyContacts[end].first == bodyContacts[first].first; ++end)
+      if (direct < 0 && role[bodyContacts[end].second] == Role::Direct) direct = bodyContacts[end].second;
+    if (direct < 0) continue;
+    for (size_t i = first; i < end; ++i)
+      if (role[bodyContacts[i].second] != Role::Swept) group[root(bodyContacts[i].second)] = root(direct);
+  }
+  for (int32_t d = 0; d < count; ++d) {
+    if (root(d) != d) continue;
+    const std::vector<int32_t> members = membersOf(d);
+    if (std::none_of(members.begin(), members.end(), [&](int32_t m) { return role[m] == Role::Direct; })) continue;
+    std::vector<DirectBlock::NodeRange> ranges;
+    bool chains = true;
+    for (int32_t member : members) {
+      ranges.push_back({deformables[member].firstNode, deformables[member].nodeCount, role[member] == Role::Direct});
+      chains &= isChain(member);
+    }
+    DirectBlock block(std::move(ranges), chains);
+    block.collectRows(rows);
     block.claimRows(rows);
     directBlocks.push_back(std::move(block));
   }

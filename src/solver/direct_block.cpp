@@ -36,6 +36,12 @@ int32_t DirectBlock::localNode(int32_t node) const {
   return -1;
 }
 
+const DirectBlock::NodeRange& DirectBlock::rangeOf(int32_t node) const {
+  for (const NodeRange& range : m_ranges)
+    if (node >= range.first && node < range.first + range.count) return range;
+  return m_ranges.front();
+}
+
 int32_t DirectBlock::globalNode(int32_t local) const {
   for (const NodeRange& range : m_ranges) {
     if (local < range.count) return range.first + local;
@@ -105,7 +111,7 @@ void DirectBlock::addContacts(ConstraintRows& rows, std::span<const RigidSolverS
     }
     row.inDirectBlock = true;
     row.lambdaNormal = 0.0;
-    const bool frictionInMetric = m_chains || rigid[row.body].inverseMass > 0.0;  // see the header
+    const bool frictionInMetric = (m_chains || rigid[row.body].inverseMass > 0.0) && rangeOf(row.node[0]).tied;  // see the header
     if (frictionInMetric && row.friction > 0.0 && frictionContacts < kMaxFrictionContacts) {
       row.frictionInBlock = true;
       row.lambdaTangent.setZero();  // solved afresh each step in the block's metric, like its rows

@@ -85,6 +85,10 @@ class DirectBlock {
   struct NodeRange {
     int32_t first;
     int32_t count;
+    // Its nodes are tied together (rows, an elastic model), so their contacts' friction is solved
+    // in the block's metric; a body with neither, there only for the rigid body it touches with
+    // the rest, has free nodes, whose friction the sweep solves exactly and cheaply.
+    bool tied = true;
   };
   // `chains`: its deformables are ropes (no redundant rows; see the geometric stiffness).
   DirectBlock(std::vector<NodeRange> ranges, bool chains);
@@ -189,6 +193,7 @@ class DirectBlock {
   Eigen::VectorXd impulseOnDofs(const ContactRow& row, const Vec3& axis) const;  // Jᵀ of a row along axis
   int32_t localNode(int32_t node) const;  // index among the block's nodes, or −1
   int32_t globalNode(int32_t local) const;
+  const NodeRange& rangeOf(int32_t node) const;  // of one of the block's nodes
   void factorise();
   void release(const std::vector<int32_t>& rows);
   // z = A⁻¹ rhs, with the released rows' equations dropped; z must not alias rhs.
