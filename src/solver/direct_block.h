@@ -1,7 +1,9 @@
 // A direct block: every bilateral, unbounded row of a group of deformables, solved exactly
 // together in each sweep (block Gauss-Seidel with one large block per group). A group is the
 // deformables that anchors tie to the same dynamic rigid bodies, with those bodies: a rod
-// hung on two ropes with a curtain on it is one block, so one sweep solves all of it.
+// hung on two ropes with a curtain on it is one block, so one sweep solves all of it. Groups
+// touching one dynamic body are one block as well, with the free-node bodies touching it
+// (World::Impl::buildDirectBlocks): a bar on four jellies is held up by all four in one solve.
 //
 // Why. Projected Gauss-Seidel converges at a rate that falls with the mass ratio across a
 // chain of rows times the square of its length: a 10 g-per-node rope holding a 1 kg box needs
