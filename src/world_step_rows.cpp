@@ -42,6 +42,15 @@ void World::Impl::buildDirectBlocks() {
   auto isChain = [&](int32_t d) {
     return deformables[d].restMesh.triangles.empty() && deformables[d].restMesh.tetrahedra.empty();
   };
+  enum class Role : char { Swept, Direct, Free };
+  // The members' node ranges; with their roles known, only the direct ones are tied.
+  auto rangesOf = [&](const std::vector<int32_t>& members, const std::vector<Role>& roles) {
+    std::vector<DirectBlock::NodeRange> ranges;
+    for (int32_t member : members)
+      ranges.push_back({deformables[member].firstNode, deformables[member].nodeCount, isChain(member),
+                        roles.empty() || roles[member] == Role::Direct});
+    return ranges;
+  };
   // Deformables anchored to one dynamic body are one group.
   std::vector<int32_t> firstDeformableOnBody(bullet.rigidBodyCount(), -1);
   for (const AnchorRow& row : rows.anchors) {
@@ -54,14 +63,12 @@ void World::Impl::buildDirectBlocks() {
       group[root(deformable)] = root(other);
   }
   // Which of those groups are solved directly; which have no rows at all (free nodes).
-  enum class Role : char { Swept, Direct, Free };
   std::vector<Role> role(deformables.size(), Role::Swept);
   for (int32_t d = 0; d < count; ++d) {
     if (root(d) != d) continue;
     // Ropes (no faces, no tetrahedra) are chains: their block's factorisation costs time linear
     // in their length, so they are direct at any length. Surfaces and solids fill in.
     bool forced = false, allowed = true, elastic = false, chains = true;
-    std::vector<DirectBlock::NodeRange> ranges;
     const std::vector<int32_t> members = membersOf(d);
     for (int32_t member : members) {
       const DeformableRecord& record = deformables[member];
@@ -69,10 +76,9 @@ void World::Impl::buildDirectBlocks() {
       allowed &= record.rowSolver != RowSolverKind::Iterative;
       elastic |= record.implicitStep;
       chains &= isChain(member);
-      ranges.push_back({record.firstNode, record.nodeCount});
     }
     if (!allowed) continue;
-    DirectBlock block(std::move(ranges), chains);
+    DirectBlock block(rangesOf(members, {}));
     block.collectRows(rows);
     const int32_t rowCount = block.scalarRowCount();
     const Role groupRole = elastic || (rowCount > 0 && (forced || chains || rowCount <= kAutoDirectRowLimit))
@@ -96,13 +102,7 @@ void World::Impl::buildDirectBlocks() {
     if (root(d) != d) continue;
     const std::vector<int32_t> members = membersOf(d);
     if (std::none_of(members.begin(), members.end(), [&](int32_t m) { return role[m] == Role::Direct; })) continue;
-    std::vector<DirectBlock::NodeRange> ranges;
-    bool chains = true;
-    for (int32_t member : members) {
-      ranges.push_back({deformables[member].firstNode, deformables[member].nodeCount, role[member] == Role::Direct});
-      chains &= isChain(member);
-    }
-    DirectBlock block(std::move(ranges), chains);
+    DirectBlock block(rangesOf(members, role));
     block.collectRows(rows);
     block.claimRows(rows);
     directBlocks.push_back(std::move(block));

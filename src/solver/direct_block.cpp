@@ -23,7 +23,7 @@ bool isUnbounded(double maxForce) { return std::isinf(maxForce); }
 
 }  // namespace
 
-DirectBlock::DirectBlock(std::vector<NodeRange> ranges, bool chains) : m_ranges(std::move(ranges)), m_chains(chains) {
+DirectBlock::DirectBlock(std::vector<NodeRange> ranges) : m_ranges(std::move(ranges)) {
   for (const NodeRange& range : m_ranges) m_nodeCount += range.count;
 }
 
@@ -111,7 +111,8 @@ void DirectBlock::addContacts(ConstraintRows& rows, std::span<const RigidSolverS
     }
     row.inDirectBlock = true;
     row.lambdaNormal = 0.0;
-    const bool frictionInMetric = (m_chains || rigid[row.body].inverseMass > 0.0) && rangeOf(row.node[0]).tied;  // see the header
+    const NodeRange& range = rangeOf(row.node[0]);
+    const bool frictionInMetric = (range.chain || rigid[row.body].inverseMass > 0.0) && range.tied;  // see the header
     if (frictionInMetric && row.friction > 0.0 && frictionContacts < kMaxFrictionContacts) {
       row.frictionInBlock = true;
       row.lambdaTangent.setZero();  // solved afresh each step in the block's metric, like its rows
@@ -210,7 +211,7 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
     // straight rope, whip round and tear it (heavy pendulum, docs/solver.md).
     const double lighter = 1.0 / std::max(nodes.inverseMass[row.node[0]], nodes.inverseMass[row.node[1]]);
     const double tension = timeStep * -row.lambda / row.restLength;
-    const double stiffness = m_chains ? tension : std::min(tension, kMaxStiffnessToMass * lighter);
+    const double stiffness = rangeOf(row.node[0]).chain ? tension : std::min(tension, kMaxStiffnessToMass * lighter);
     const Mat3 g = taut ? Mat3(stiffness * (Mat3::Identity() - n * n.transpose())) : Mat3::Zero();
     const std::array<int32_t, 2> dof{nodeDof(row.node[0]), nodeDof(row.node[1])};
     for (int a = 0; a < 2; ++a)

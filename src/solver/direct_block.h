@@ -87,13 +87,15 @@ class DirectBlock {
   struct NodeRange {
     int32_t first;
     int32_t count;
+    // A rope (no faces, no tetrahedra): a chain, with no redundant rows (see the geometric
+    // stiffness), whose contacts' friction is always solved in the block's metric.
+    bool chain = false;
     // Its nodes are tied together (rows, an elastic model), so their contacts' friction is solved
     // in the block's metric; a body with neither, there only for the rigid body it touches with
     // the rest, has free nodes, whose friction the sweep solves exactly and cheaply.
     bool tied = true;
   };
-  // `chains`: its deformables are ropes (no redundant rows; see the geometric stiffness).
-  DirectBlock(std::vector<NodeRange> ranges, bool chains);
+  explicit DirectBlock(std::vector<NodeRange> ranges);
 
   // Finds every bilateral unbounded row on the body's nodes. Call again when rows are added.
   void collectRows(const ConstraintRows& rows);
@@ -133,7 +135,6 @@ class DirectBlock {
   using SparseMatrix = Eigen::SparseMatrix<double>;
 
   std::vector<NodeRange> m_ranges;
-  bool m_chains = false;
   int32_t m_nodeCount = 0;  // over all ranges
   std::vector<BlockRowRef> m_rows;  // the persistent rows first, then this step's contacts
   std::vector<int32_t> m_bodies;     // rigid bodies of the block's anchors, then of its contacts
