@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Scripted mouse input to `tandem view` under Xvfb: presses the left button at pixel (X0, Y0),
-# moves to (X1, Y1) in small steps, holds, releases, lets the scene settle, then tells the viewer
+# moves to (X1, Y1) in small steps, holds, releases, lets the scene settle (3 s: the viewer keeps
+# real time only on an idle machine, and a box the drag tipped must have the simulated time to fall
+# back flat; after 1 s a loaded CI machine once left it tipped, 13 mm high), then tells the viewer
 # to quit (SIGTERM: it finishes its frame and prints where the dynamic bodies are). The script
 # decides when the viewer stops, so no xdotool call can meet a window that is already gone (the
 # old wall-clock limit raced the drag on a loaded machine: "X Error ... BadWindow").
@@ -28,7 +30,7 @@ for i in \$(seq 1 40); do
 done
 sleep 1
 xdotool mouseup 1
-sleep 1
+sleep 3
 kill -TERM \$viewer
 trap - EXIT
 wait \$viewer
