@@ -359,11 +359,12 @@ void DirectBlock::release(const std::vector<int32_t>& released) {
   }
   const Eigen::Index size = m_dofCount + scalarRowCount();
   m_releasedColumns.conservativeResize(size, count);
-  for (int32_t row : released) {
-    Eigen::VectorXd unit = Eigen::VectorXd::Zero(size);
-    unit[m_dofCount + row] = 1.0;
-    m_releasedColumns.col(static_cast<Eigen::Index>(m_releasedRows.size())) = m_factor->solve(unit);
-    m_releasedRows.push_back(m_dofCount + row);
+  m_columns.setZero(size, static_cast<Eigen::Index>(released.size()));
+  for (size_t i = 0; i < released.size(); ++i) m_columns(m_dofCount + released[i], static_cast<Eigen::Index>(i)) = 1.0;
+  solveKktColumns(m_columns, false);
+  for (size_t i = 0; i < released.size(); ++i) {
+    m_releasedColumns.col(static_cast<Eigen::Index>(m_releasedRows.size())) = m_columns.col(static_cast<Eigen::Index>(i));
+    m_releasedRows.push_back(m_dofCount + released[i]);
   }
   Eigen::MatrixXd coupling(count, count);
   for (Eigen::Index i = 0; i < count; ++i) coupling.row(i) = m_releasedColumns.row(m_releasedRows[i]);
@@ -376,6 +377,51 @@ void DirectBlock::solveKkt(const Eigen::VectorXd& rhs, Eigen::VectorXd& z) const
   m_atReleased.resize(static_cast<Eigen::Index>(m_releasedRows.size()));
   for (size_t i = 0; i < m_releasedRows.size(); ++i) m_atReleased[static_cast<Eigen::Index>(i)] = -z[m_releasedRows[i]];
   z.noalias() += m_releasedColumns * m_releasedCoupling.solve(m_atReleased);
+}
+
+// Eigen's SimplicialLDLT::solve (x ← P x, L y = x, D⁻¹, Lᵀ, Pᵀ) with the same operations in the
+// same order for each column, so each comes out as solveKkt's to the bit; but row by row across
+// the columns, so each entry of the factor is read once for all of them, and a row of the
+// forward pass that is zero in every column (a unit or a contact's impulse touches a few) is
+// skipped, as Eigen skips it for one.
+void DirectBlock::solveKktColumns(ColumnBlock& x, bool withReleased) const {
+  const Eigen::Index size = x.rows();
+  const auto& permutation = m_factor->permutationP().indices();
+  const auto& inverse = m_factor->permutationPinv().indices();
+  const SparseMatrix& lower = m_factor->matrixL().nestedExpression();  // strictly lower, by columns
+  const int* columnStart = lower.outerIndexPtr();
+  const int* rowOf = lower.innerIndexPtr();
+  const double* value = lower.valuePtr();
+  const Eigen::VectorXd& diagonal = m_factor->vectorD();
+  const Eigen::Index width = x.cols();
+  m_permuted.resize(size, width);
+  for (Eigen::Index i = 0; i < size; ++i) m_permuted.row(permutation[i]) = x.row(i);
+  double* const data = m_permuted.data();
+  for (Eigen::Index i = 0; i < size; ++i) {
+    const double* const xi = data + i * width;
+    if (std::all_of(xi, xi + width, [](double v) { return v == 0.0; })) continue;
+    for (int k = columnStart[i]; k < columnStart[i + 1]; ++k) {
+      double* const xk = data + Eigen::Index{rowOf[k]} * width;
+      for (Eigen::Index c = 0; c < width; ++c) xk[c] -= value[k] * xi[c];
+    }
+  }
+  for (Eigen::Index i = 0; i < size; ++i) m_permuted.row(i) *= 1.0 / diagonal[i];
+  for (Eigen::Index i = size - 1; i >= 0; --i) {
+    double* const xi = data + i * width;
+    for (int k = columnStart[i]; k < columnStart[i + 1]; ++k) {
+      const double* const xk = data + Eigen::Index{rowOf[k]} * width;
+      for (Eigen::Index c = 0; c < width; ++c) xi[c] -= value[k] * xk[c];
+    }
+  }
+  for (Eigen::Index i = 0; i < size; ++i) x.row(inverse[i]) = m_permuted.row(i);
+  if (!withReleased || m_releasedRows.empty()) return;
+  m_atReleased.resize(static_cast<Eigen::Index>(m_releasedRows.size()));
+  for (Eigen::Index c = 0; c < x.cols(); ++c) {  // as solveKkt, a column at a time
+    m_column = x.col(c);
+    for (size_t i = 0; i < m_releasedRows.size(); ++i) m_atReleased[static_cast<Eigen::Index>(i)] = -m_column[m_releasedRows[i]];
+    m_column.noalias() += m_releasedColumns * m_releasedCoupling.solve(m_atReleased);
+    x.col(c) = m_column;
+  }
 }
 
 bool DirectBlock::projectPositions(const ConstraintRows& rows, NodeArrays& nodes) {
@@ -500,16 +546,19 @@ void DirectBlock::solve(ConstraintRows& rows, SolverContext& ctx, SweepStats& st
   for (int32_t r = 0; r < rowCount; ++r) stats.add(deltaLambda[r]);
 }
 
-// An impulse on the block's degrees of freedom turned, in place, into the velocity change it
-// makes: m⁻¹ per node, (Gᵀ 𝕄 G)⁻¹ per body.
-void DirectBlock::toVelocityChange(Eigen::VectorXd& impulse) const {
+// Impulses on the block's degrees of freedom (a column each) turned, in place, into the velocity
+// changes they make: m⁻¹ per node, (Gᵀ 𝕄 G)⁻¹ per body.
+template <typename Impulses>
+void DirectBlock::toVelocityChange(Impulses& impulses) const {
   for (int32_t n = 0; n < m_nodeCount; ++n)
-    if (m_nodeDof[n] >= 0) impulse.segment<3>(m_nodeDof[n]) *= m_inverseMass[m_nodeDof[n]];
+    if (m_nodeDof[n] >= 0) impulses.template middleRows<3>(m_nodeDof[n]) *= m_inverseMass[m_nodeDof[n]];
   for (size_t b = 0; b < m_bodies.size(); ++b) {
     if (m_bodyDof[b] < 0) continue;
     const int k = m_bodyMotion[b].freedoms;
-    const Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1> generalised = impulse.segment(m_bodyDof[b], k);
-    impulse.segment(m_bodyDof[b], k) = m_bodyMotion[b].inverseMass.topLeftCorner(k, k) * generalised;
+    for (Eigen::Index c = 0; c < impulses.cols(); ++c) {
+      const Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1> generalised = impulses.col(c).segment(m_bodyDof[b], k);
+      impulses.col(c).segment(m_bodyDof[b], k) = m_bodyMotion[b].inverseMass.topLeftCorner(k, k) * generalised;
+    }
   }
 }
 
@@ -581,33 +630,46 @@ void DirectBlock::computeFrictionResponses(const ConstraintRows& rows) {
   m_friction.clear();
   m_frictionStale = false;
   const int32_t rowCount = scalarRowCount();
-  for (size_t r = m_persistentRows; r < m_rows.size(); ++r) {
-    const ContactRow& row = rows.contacts[m_rows[r].index];
-    if (!row.frictionInBlock || m_released[r]) continue;
-    FrictionResponse response;
-    response.row = static_cast<int32_t>(r);
-    const std::array<Vec3, 2> tangents{row.tangent1, row.tangent2};
-    std::array<Eigen::VectorXd, 2> applied;
-    for (int t = 0; t < 2; ++t) {
-      applied[t] = impulseOnDofs(row, tangents[t]);
-      m_rhs.setZero(m_dofCount + rowCount);
-      m_rhs.head(m_dofCount) = applied[t];
-      solveKkt(m_rhs, m_solution);
-      // As in solve(): velocities from the impulses, M Δv = f + Jᵀ Δλ − h² K Δv (momentum-exact).
-      response.impulse[t] = -m_solution.tail(rowCount);
-      for (int32_t q = 0; q < rowCount; ++q)
-        if (m_released[q]) response.impulse[t][q] = 0.0;
-      response.velocity[t] = applied[t] + m_jacobianT * response.impulse[t] - m_stiffness * m_solution.head(m_dofCount);
-      toVelocityChange(response.velocity[t]);
+  for (size_t r = m_persistentRows; r < m_rows.size(); ++r)
+    if (rows.contacts[m_rows[r].index].frictionInBlock && !m_released[r]) {
+      FrictionResponse& response = m_friction.emplace_back();
+      response.row = static_cast<int32_t>(r);
+      response.column = 2 * static_cast<Eigen::Index>(m_friction.size() - 1);
     }
+  // The KKT solves with each contact's two unit tangential impulses f, all at once.
+  const auto columns = 2 * static_cast<Eigen::Index>(m_friction.size());
+  m_frictionApplied.resize(m_dofCount, columns);
+  for (const FrictionResponse& response : m_friction) {
+    const ContactRow& row = rows.contacts[m_rows[response.row].index];
+    m_frictionApplied.col(response.column) = impulseOnDofs(row, row.tangent1);
+    m_frictionApplied.col(response.column + 1) = impulseOnDofs(row, row.tangent2);
+  }
+  m_columns.setZero(m_dofCount + rowCount, columns);
+  m_columns.topRows(m_dofCount) = m_frictionApplied;
+  solveKktColumns(m_columns, true);
+  // As in solve(): velocities from the impulses, M Δv = f + Jᵀ Δλ − h² K Δv (momentum-exact).
+  m_frictionImpulse = -m_columns.bottomRows(rowCount);
+  for (int32_t q = 0; q < rowCount; ++q)
+    if (m_released[q]) m_frictionImpulse.row(q).setZero();
+  m_frictionVelocity = m_frictionApplied;
+  m_frictionVelocity.noalias() += m_jacobianT * m_frictionImpulse;
+  m_frictionVelocity.noalias() -= m_stiffness * m_columns.topRows(m_dofCount);
+  toVelocityChange(m_frictionVelocity);
+  size_t kept = 0;
+  for (const FrictionResponse& response : m_friction) {
     Eigen::Matrix2d w;
-    for (int i = 0; i < 2; ++i)
-      for (int j = 0; j < 2; ++j) w(i, j) = applied[i].dot(response.velocity[j]);
+    for (int a = 0; a < 2; ++a)
+      for (int b = 0; b < 2; ++b) {  // (as contiguous vectors: the dot product sums in the same order as before)
+        m_solution = m_frictionApplied.col(response.column + a);
+        m_velocityChange = m_frictionVelocity.col(response.column + b);
+        w(a, b) = m_solution.dot(m_velocityChange);
+      }
     // A contact point that cannot slide relative to anything movable has no friction to solve.
     if (w.determinant() <= 1e-18 * std::max(1.0, w.squaredNorm())) continue;
-    response.effectiveMass = w.inverse();
-    m_friction.push_back(std::move(response));
+    m_friction[kept] = response;
+    m_friction[kept++].effectiveMass = w.inverse();
   }
+  m_friction.resize(kept);
 }
 
 void DirectBlock::solveFriction(ConstraintRows& rows, SolverContext& ctx, FrictionModel model, SweepStats& stats) {
@@ -624,22 +686,22 @@ void DirectBlock::solveFriction(ConstraintRows& rows, SolverContext& ctx, Fricti
     double fraction = 1.0;
     for (size_t q = m_persistentRows; q < m_rows.size(); ++q) {
       const double lambdaNormal = rows.contacts[m_rows[q].index].lambdaNormal;
-      const double change = delta[0] * response.impulse[0][static_cast<Eigen::Index>(q)] +
-                            delta[1] * response.impulse[1][static_cast<Eigen::Index>(q)];
+      const auto k = static_cast<Eigen::Index>(q);
+      const double change = delta[0] * m_frictionImpulse(k, response.column) + delta[1] * m_frictionImpulse(k, response.column + 1);
       if (change < 0.0 && lambdaNormal + fraction * change < 0.0) fraction = std::max(0.0, -lambdaNormal / change);
     }
     delta *= fraction;
     row.lambdaTangent = previous + delta;
     if (delta.isZero()) continue;
     // The whole block moves; a body outside it (a static or kinematic one) takes nothing.
-    m_velocityChange = delta[0] * response.velocity[0] + delta[1] * response.velocity[1];
+    m_velocityChange = delta[0] * m_frictionVelocity.col(response.column) + delta[1] * m_frictionVelocity.col(response.column + 1);
     applyVelocityChange(m_velocityChange, ctx);
     if (row.body >= 0) {  // the friction's own share of the body's impulse, for the report
       const Vec3 onBody = -(delta[0] * row.tangent1 + delta[1] * row.tangent2);
       ctx.rigid[row.body].impulse += onBody;
       ctx.rigid[row.body].angularImpulse += row.offset.cross(onBody);
     }
-    m_rowImpulseChange = delta[0] * response.impulse[0] + delta[1] * response.impulse[1];
+    m_rowImpulseChange = delta[0] * m_frictionImpulse.col(response.column) + delta[1] * m_frictionImpulse.col(response.column + 1);
     addRowImpulses(rows, m_rowImpulseChange, ctx);
     stats.add(delta[0]);
     stats.add(delta[1]);

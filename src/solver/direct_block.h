@@ -133,6 +133,8 @@ class DirectBlock {
 
  private:
   using SparseMatrix = Eigen::SparseMatrix<double>;
+  // Right-hand sides side by side: a row per unknown, so one pass over the factor serves them all.
+  using ColumnBlock = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
   std::vector<NodeRange> m_ranges;
   int32_t m_nodeCount = 0;  // over all ranges
@@ -153,6 +155,9 @@ class DirectBlock {
   std::vector<int> m_analysedOuter, m_analysedInner;  // the pattern the ordering was computed for
   Eigen::VectorXd m_rhs, m_solution, m_refinement;
   mutable Eigen::VectorXd m_atReleased;  // scratch of solveKkt
+  mutable ColumnBlock m_permuted;        // scratch of solveKktColumns
+  mutable Eigen::VectorXd m_column;      // scratch of solveKktColumns
+  ColumnBlock m_columns;                 // right-hand sides of the friction responses and released rows
   Eigen::VectorXd m_velocityChange;    // scratch: of the block's degrees of freedom
   Eigen::VectorXd m_rowImpulseChange;  // scratch: Δλ of the block's rows
   SparseMatrix m_jacobianT;         // Jᵀ: dofs × rows
@@ -179,19 +184,23 @@ class DirectBlock {
   Eigen::MatrixXd m_releasedColumns;         // A⁻¹ e_r for each of them
   Eigen::PartialPivLU<Eigen::MatrixXd> m_releasedCoupling;  // of those columns' released rows
 
-  // Per contact with friction in the block (its row index r), per tangent: the velocity change
-  // of the block's degrees of freedom and the Δλ of its rows for a unit tangential impulse.
+  // Per contact with friction in the block (its row index r), per tangent (columns `column` and
+  // `column` + 1 of the matrices below): the velocity change of the block's degrees of freedom
+  // and the Δλ of its rows for a unit tangential impulse.
   struct FrictionResponse {
     int32_t row = 0;
-    std::array<Eigen::VectorXd, 2> velocity, impulse;
+    Eigen::Index column = 0;
     Eigen::Matrix2d effectiveMass = Eigen::Matrix2d::Zero();  // W⁻¹
   };
   std::vector<FrictionResponse> m_friction;
+  ColumnBlock m_frictionApplied, m_frictionVelocity;  // dofs × 2 per contact: f, then Δv
+  ColumnBlock m_frictionImpulse;                      // rows × 2 per contact: Δλ
   bool m_frictionStale = true;  // the system changed since the responses were computed
 
   void computeFrictionResponses(const ConstraintRows& rows);
   void addRowImpulses(ConstraintRows& rows, const Eigen::VectorXd& deltaLambda, SolverContext& ctx) const;
-  void toVelocityChange(Eigen::VectorXd& impulse) const;
+  template <typename Impulses>
+  void toVelocityChange(Impulses& impulses) const;  // each column
   void applyVelocityChange(const Eigen::VectorXd& change, SolverContext& ctx) const;
   Eigen::VectorXd impulseOnDofs(const ContactRow& row, const Vec3& axis) const;  // Jᵀ of a row along axis
   int32_t localNode(int32_t node) const;  // index among the block's nodes, or −1
@@ -201,6 +210,9 @@ class DirectBlock {
   void release(const std::vector<int32_t>& rows);
   // z = A⁻¹ rhs, with the released rows' equations dropped; z must not alias rhs.
   void solveKkt(const Eigen::VectorXd& rhs, Eigen::VectorXd& z) const;
+  // The same for many right-hand sides at once, in place: the columns of `x` in, A⁻¹ of them out
+  // (`withReleased`: the released rows' equations dropped, else the factorised system's).
+  void solveKktColumns(ColumnBlock& x, bool withReleased) const;
   double rowVelocity(const ConstraintRows& rows, const BlockRowRef& ref, const SolverContext& ctx) const;
 };
 
