@@ -317,22 +317,19 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
 }
 
 void DirectBlock::factorise() {
-  const Eigen::Index size = m_dofCount + scalarRowCount();
-  SparseMatrix kkt(size, size);
-  kkt.setFromTriplets(m_entries.begin(), m_entries.end());
+  const bool placed = m_kktAssembly.assemble(m_entries, m_dofCount + scalarRowCount(), m_kkt);
   m_releasedRows.clear();  // in the matrix now
   m_frictionStale = true;
   // The ordering and symbolic factorisation are redone only when the sparsity pattern changes
   // (pinned nodes, movable bodies, the contacts in the block).
-  kkt.makeCompressed();
-  const std::span<const int> outer(kkt.outerIndexPtr(), static_cast<size_t>(kkt.outerSize()) + 1);
-  const std::span<const int> inner(kkt.innerIndexPtr(), static_cast<size_t>(kkt.nonZeros()));
-  if (!std::ranges::equal(outer, m_analysedOuter) || !std::ranges::equal(inner, m_analysedInner)) {
-    m_factor->analyzePattern(kkt);
+  const std::span<const int> outer(m_kkt.outerIndexPtr(), static_cast<size_t>(m_kkt.outerSize()) + 1);
+  const std::span<const int> inner(m_kkt.innerIndexPtr(), static_cast<size_t>(m_kkt.nonZeros()));
+  if (placed && (!std::ranges::equal(outer, m_analysedOuter) || !std::ranges::equal(inner, m_analysedInner))) {
+    m_factor->analyzePattern(m_kkt);
     m_analysedOuter.assign(outer.begin(), outer.end());
     m_analysedInner.assign(inner.begin(), inner.end());
   }
-  m_factor->factorize(kkt);
+  m_factor->factorize(m_kkt);
   m_factorOk = m_factor->info() == Eigen::Success;
 }
 

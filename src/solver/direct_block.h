@@ -64,6 +64,7 @@
 #include <tandem/report.h>
 
 #include "solver/constraint_rows.h"
+#include "solver/lower_triangle.h"
 
 #include <Eigen/Dense>
 #include <Eigen/SparseCholesky>
@@ -178,6 +179,8 @@ class DirectBlock {
   std::vector<BodyMotion> m_bodyMotion;
   SparseMatrix m_stiffness;         // h² (K_g + K_e): dofs × dofs
   std::vector<Eigen::Triplet<double>> m_entries;  // the KKT matrix, kept to release contacts
+  LowerTriangleAssembly m_kktAssembly;             // of m_entries into m_kkt
+  SparseMatrix m_kkt;                              // its lower triangle, factorised
   std::vector<std::pair<size_t, size_t>> m_rowEntries;  // each row's entries; its diagonal last
   std::vector<bool> m_released;  // contacts let go this step
   std::vector<Eigen::Index> m_releasedRows;  // KKT rows let go since the last factorisation
