@@ -16,7 +16,8 @@ constexpr int kMaxReleaseRounds = 3;
 constexpr Eigen::Index kLowRankReleases = 32;
 // h² K_g per edge is at most this multiple of its lighter node's mass.
 constexpr double kMaxStiffnessToMass = 100;
-// Contacts whose friction a block solves in its own metric (two KKT solves each per factorisation).
+// Contacts whose friction a block solves in its own metric (two KKT right-hand sides each per
+// factorisation, solved together).
 constexpr size_t kMaxFrictionContacts = 32;
 
 bool isUnbounded(double maxForce) { return std::isinf(maxForce); }
@@ -607,20 +608,18 @@ void DirectBlock::addRowImpulses(ConstraintRows& rows, const Eigen::VectorXd& de
   }
 }
 
-Eigen::VectorXd DirectBlock::impulseOnDofs(const ContactRow& row, const Vec3& axis) const {
-  Eigen::VectorXd f = Eigen::VectorXd::Zero(m_dofCount);
+void DirectBlock::writeImpulseOnDofs(const ContactRow& row, const Vec3& axis, ColumnBlock& target, Eigen::Index column) const {
   for (int k = 0; k < 4; ++k) {
     const int32_t local = localNode(row.node[k]);
     if (row.coefficient[k] != 0.0 && local >= 0 && m_nodeDof[local] >= 0)
-      f.segment<3>(m_nodeDof[local]) += row.coefficient[k] * axis;
+      target.col(column).segment<3>(m_nodeDof[local]) += row.coefficient[k] * axis;
   }
   const auto body = std::find(m_bodies.begin(), m_bodies.end(), row.body);
   if (row.body >= 0 && body != m_bodies.end() && m_bodyDof[body - m_bodies.begin()] >= 0) {
     const BodyMotion& motion = m_bodyMotion[static_cast<size_t>(body - m_bodies.begin())];
-    f.segment(m_bodyDof[body - m_bodies.begin()], motion.freedoms) =
+    target.col(column).segment(m_bodyDof[body - m_bodies.begin()], motion.freedoms) =
         motion.generalisedImpulse(-axis, row.offset).head(motion.freedoms);
   }
-  return f;
 }
 
 void DirectBlock::computeFrictionResponses(const ConstraintRows& rows) {
@@ -635,14 +634,13 @@ void DirectBlock::computeFrictionResponses(const ConstraintRows& rows) {
     }
   // The KKT solves with each contact's two unit tangential impulses f, all at once.
   const auto columns = 2 * static_cast<Eigen::Index>(m_friction.size());
-  m_frictionApplied.resize(m_dofCount, columns);
+  m_columns.setZero(m_dofCount + rowCount, columns);
   for (const FrictionResponse& response : m_friction) {
     const ContactRow& row = rows.contacts[m_rows[response.row].index];
-    m_frictionApplied.col(response.column) = impulseOnDofs(row, row.tangent1);
-    m_frictionApplied.col(response.column + 1) = impulseOnDofs(row, row.tangent2);
+    writeImpulseOnDofs(row, row.tangent1, m_columns, response.column);
+    writeImpulseOnDofs(row, row.tangent2, m_columns, response.column + 1);
   }
-  m_columns.setZero(m_dofCount + rowCount, columns);
-  m_columns.topRows(m_dofCount) = m_frictionApplied;
+  m_frictionApplied = m_columns.topRows(m_dofCount);
   solveKktColumns(m_columns, true);
   // As in solve(): velocities from the impulses, M Δv = f + Jᵀ Δλ − h² K Δv (momentum-exact).
   m_frictionImpulse = -m_columns.bottomRows(rowCount);

@@ -205,7 +205,8 @@ class DirectBlock {
   template <typename Impulses>
   void toVelocityChange(Impulses& impulses) const;  // each column
   void applyVelocityChange(const Eigen::VectorXd& change, SolverContext& ctx) const;
-  Eigen::VectorXd impulseOnDofs(const ContactRow& row, const Vec3& axis) const;  // Jᵀ of a row along axis
+  // Jᵀ of a row along `axis` written into a column of `target` (zero there before).
+  void writeImpulseOnDofs(const ContactRow& row, const Vec3& axis, ColumnBlock& target, Eigen::Index column) const;
   int32_t localNode(int32_t node) const;  // index among the block's nodes, or −1
   int32_t globalNode(int32_t local) const;
   const NodeRange& rangeOf(int32_t node) const;  // of one of the block's nodes
