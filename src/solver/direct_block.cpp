@@ -173,8 +173,9 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
   auto blockBody = [&](int32_t body) { return static_cast<size_t>(std::find(m_bodies.begin(), m_bodies.end(), body) - m_bodies.begin()); };
 
   const int32_t rowCount = scalarRowCount();
-  std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(static_cast<size_t>(m_dofCount) * 3 + static_cast<size_t>(rowCount) * 16);
+  // The KKT matrix's entries, built in place (the vectors keep their capacity from step to step).
+  std::vector<Eigen::Triplet<double>>& entries = m_entries;
+  entries.clear();
 
   // H = M + h² K_g + h² K_e
   for (int32_t n = 0; n < m_nodeCount; ++n) {
@@ -190,11 +191,11 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
       for (int c = 0; c < k; ++c)
         if (mass(r, c) != 0.0) entries.emplace_back(m_bodyDof[b] + r, m_bodyDof[b] + c, mass(r, c));
   }
-  std::vector<Eigen::Triplet<double>> stiffnessEntries;
+  const size_t stiffnessBegin = entries.size();
   auto addStiffness = [&](int32_t dofA, int32_t dofB, const Mat3& k) {
     if (dofA < 0 || dofB < 0) return;
     for (int32_t r = 0; r < 3; ++r)
-      for (int32_t c = 0; c < 3; ++c) stiffnessEntries.emplace_back(dofA + r, dofB + c, k(r, c));
+      for (int32_t c = 0; c < 3; ++c) entries.emplace_back(dofA + r, dofB + c, k(r, c));
   };
   // Every edge gets its entries, zero when slack, so the sparsity pattern stays the same from
   // step to step and the ordering and symbolic analysis are done once.
@@ -222,13 +223,11 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
     const int32_t a = localNode(pair.nodeA), b = localNode(pair.nodeB);
     if (a >= 0 && b >= 0) addStiffness(m_nodeDof[a], m_nodeDof[b], pair.k);
   }
-  m_stiffness.resize(m_dofCount, m_dofCount);
-  m_stiffness.setFromTriplets(stiffnessEntries.begin(), stiffnessEntries.end());
-  entries.insert(entries.end(), stiffnessEntries.begin(), stiffnessEntries.end());
+  m_stiffnessAssembly.assemble(std::span(entries).subspan(stiffnessBegin), m_dofCount, m_dofCount, m_stiffness);
 
   // J and Jᵀ, and the compliance −E. Row r of the KKT system is m_dofCount + r.
-  std::vector<Eigen::Triplet<double>> transposed;
-  transposed.reserve(static_cast<size_t>(rowCount) * 8);
+  std::vector<Eigen::Triplet<double>>& transposed = m_jacobianTEntries;
+  transposed.clear();
   m_bias.resize(rowCount);
   m_compliance.resize(rowCount);
   m_active.assign(rowCount, false);
@@ -307,18 +306,17 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
     m_rowEntries[r].second = entries.size();  // the diagonal is the last
   }
 
-  m_jacobianT.resize(m_dofCount, rowCount);
-  m_jacobianT.setFromTriplets(transposed.begin(), transposed.end());
+  m_jacobianTAssembly.assemble(transposed, m_dofCount, rowCount, m_jacobianT);
   m_inverseMass.resize(m_dofCount);
   for (int32_t n = 0; n < m_nodeCount; ++n)
     if (m_nodeDof[n] >= 0) m_inverseMass.segment<3>(m_nodeDof[n]).setConstant(nodes.inverseMass[globalNode(n)]);
 
-  m_entries = std::move(entries);
   factorise();
 }
 
 void DirectBlock::factorise() {
-  const bool placed = m_kktAssembly.assemble(m_entries, m_dofCount + scalarRowCount(), m_kkt);
+  const Eigen::Index size = m_dofCount + scalarRowCount();
+  const bool placed = m_kktAssembly.assemble(m_entries, size, size, m_kkt);
   m_releasedRows.clear();  // in the matrix now
   m_frictionStale = true;
   // The ordering and symbolic factorisation are redone only when the sparsity pattern changes

@@ -64,7 +64,7 @@
 #include <tandem/report.h>
 
 #include "solver/constraint_rows.h"
-#include "solver/lower_triangle.h"
+#include "solver/sparse_assembly.h"
 
 #include <Eigen/Dense>
 #include <Eigen/SparseCholesky>
@@ -162,6 +162,8 @@ class DirectBlock {
   Eigen::VectorXd m_velocityChange;    // scratch: of the block's degrees of freedom
   Eigen::VectorXd m_rowImpulseChange;  // scratch: Δλ of the block's rows
   SparseMatrix m_jacobianT;         // Jᵀ: dofs × rows
+  std::vector<Eigen::Triplet<double>> m_jacobianTEntries;
+  SparseAssembly m_jacobianTAssembly{SparseAssembly::Part::Whole};
   Eigen::VectorXd m_inverseMass;    // per node degree of freedom
   // Per entry of m_bodies: its free directions G (6 × k) and (Gᵀ 𝕄 G)⁻¹; for a free body
   // G = I and the inverse is diag(m⁻¹ I, I⁻¹).
@@ -178,9 +180,10 @@ class DirectBlock {
   };
   std::vector<BodyMotion> m_bodyMotion;
   SparseMatrix m_stiffness;         // h² (K_g + K_e): dofs × dofs
+  SparseAssembly m_stiffnessAssembly{SparseAssembly::Part::Whole};
   std::vector<Eigen::Triplet<double>> m_entries;  // the KKT matrix, kept to release contacts
-  LowerTriangleAssembly m_kktAssembly;             // of m_entries into m_kkt
-  SparseMatrix m_kkt;                              // its lower triangle, factorised
+  SparseAssembly m_kktAssembly{SparseAssembly::Part::LowerTriangle};  // of m_entries into m_kkt
+  SparseMatrix m_kkt;                                                 // its lower triangle, factorised
   std::vector<std::pair<size_t, size_t>> m_rowEntries;  // each row's entries; its diagonal last
   std::vector<bool> m_released;  // contacts let go this step
   std::vector<Eigen::Index> m_releasedRows;  // KKT rows let go since the last factorisation

@@ -2,23 +2,27 @@
 
 #include <Eigen/SparseCore>
 
+#include <span>
 #include <vector>
 
 namespace tandem {
 
-// The lower triangle of a symmetric matrix, in compressed columns, from triplets of the whole
-// matrix: duplicates are summed in the order given, as Eigen's setFromTriplets sums them, and the
-// entries above the diagonal are left out (a Lower LDLᵀ reads nothing else). Each triplet's place
+// A sparse matrix in compressed columns from triplets, as Eigen's setFromTriplets builds it
+// (duplicates summed in the order given, each column's rows in order, explicit zeros kept), or
+// only its lower triangle (of a symmetric matrix: all a Lower LDLᵀ reads). Each triplet's place
 // among the values is kept, so while the triplets' positions stay the same from one assembly to
-// the next (a block's released rows, a step whose contacts are the same) assembly is one pass
-// over their values.
-class LowerTriangleAssembly {
+// the next (a block's released rows, a step whose contacts are the same, an elastic body's
+// stiffness) assembly is one pass over their values, and nothing is allocated.
+class SparseAssembly {
  public:
-  // Writes `matrix` (size × size); returns whether its pattern was rebuilt.
-  bool assemble(const std::vector<Eigen::Triplet<double>>& entries, Eigen::Index size,
+  enum class Part { Whole, LowerTriangle };
+  explicit SparseAssembly(Part part) : m_part(part) {}
+
+  // Writes `matrix` (rows × columns); returns whether its pattern was rebuilt.
+  bool assemble(std::span<const Eigen::Triplet<double>> entries, Eigen::Index rows, Eigen::Index columns,
                 Eigen::SparseMatrix<double>& matrix) {
-    const bool same = size == m_size && samePositions(entries);
-    if (!same) placeEntries(entries, size, matrix);
+    const bool same = rows == m_rows && columns == m_columns && samePositions(entries);
+    if (!same) placeEntries(entries, rows, columns, matrix);
     double* value = matrix.valuePtr();
     for (size_t e = 0; e < entries.size(); ++e) {
       const int slot = m_slot[e];
@@ -29,13 +33,14 @@ class LowerTriangleAssembly {
   }
 
  private:
-  Eigen::Index m_size = -1;
+  Part m_part;
+  Eigen::Index m_rows = -1, m_columns = -1;
   std::vector<int> m_row, m_col;  // the positions of the entries last placed
-  std::vector<int> m_slot;        // per entry: its index among the values, or −1 above the diagonal
+  std::vector<int> m_slot;        // per entry: its index among the values, or −1 if left out
   std::vector<char> m_first;      // per entry: the first of its slot's, which sets the value
   std::vector<int> m_count, m_byRow, m_byColumn;  // scratch of placeEntries
 
-  bool samePositions(const std::vector<Eigen::Triplet<double>>& entries) const {
+  bool samePositions(std::span<const Eigen::Triplet<double>> entries) const {
     if (entries.size() != m_row.size()) return false;
     for (size_t e = 0; e < entries.size(); ++e)
       if (entries[e].row() != m_row[e] || entries[e].col() != m_col[e]) return false;
@@ -44,18 +49,18 @@ class LowerTriangleAssembly {
 
   // Two stable counting sorts (by row, then by column) put each column's entries in row order,
   // duplicates side by side in the order given.
-  void placeEntries(const std::vector<Eigen::Triplet<double>>& entries, Eigen::Index size,
+  void placeEntries(std::span<const Eigen::Triplet<double>> entries, Eigen::Index rows, Eigen::Index columns,
                     Eigen::SparseMatrix<double>& matrix) {
-    const auto n = static_cast<int>(size);
-    m_size = size;
+    m_rows = rows;
+    m_columns = columns;
     m_row.resize(entries.size());
     m_col.resize(entries.size());
     m_slot.assign(entries.size(), -1);
     m_first.assign(entries.size(), 0);
-    auto countingSort = [&](const std::vector<int>& from, std::vector<int>& to, const std::vector<int>& key) {
+    auto countingSort = [&](const std::vector<int>& from, std::vector<int>& to, const std::vector<int>& key, Eigen::Index n) {
       m_count.assign(static_cast<size_t>(n) + 1, 0);
       for (int e : from) ++m_count[static_cast<size_t>(key[static_cast<size_t>(e)]) + 1];
-      for (int i = 0; i < n; ++i) m_count[static_cast<size_t>(i) + 1] += m_count[static_cast<size_t>(i)];
+      for (size_t i = 0; i < static_cast<size_t>(n); ++i) m_count[i + 1] += m_count[i];
       to.resize(from.size());
       for (int e : from) to[static_cast<size_t>(m_count[static_cast<size_t>(key[static_cast<size_t>(e)])]++)] = e;
     };
@@ -63,12 +68,12 @@ class LowerTriangleAssembly {
     for (size_t e = 0; e < entries.size(); ++e) {
       m_row[e] = entries[e].row();
       m_col[e] = entries[e].col();
-      if (m_row[e] >= m_col[e]) m_byColumn.push_back(static_cast<int>(e));
+      if (m_part == Part::Whole || m_row[e] >= m_col[e]) m_byColumn.push_back(static_cast<int>(e));
     }
-    countingSort(m_byColumn, m_byRow, m_row);
-    countingSort(m_byRow, m_byColumn, m_col);
+    countingSort(m_byColumn, m_byRow, m_row, rows);
+    countingSort(m_byRow, m_byColumn, m_col, columns);
 
-    matrix.resize(size, size);
+    matrix.resize(rows, columns);
     int* outer = matrix.outerIndexPtr();
     int slots = 0;
     for (size_t k = 0; k < m_byColumn.size(); ++k) {
@@ -81,14 +86,14 @@ class LowerTriangleAssembly {
     }
     matrix.resizeNonZeros(slots);
     int* inner = matrix.innerIndexPtr();
-    std::fill(outer, outer + n + 1, 0);
+    std::fill(outer, outer + columns + 1, 0);
     for (size_t k = 0; k < m_byColumn.size(); ++k) {
       const auto e = static_cast<size_t>(m_byColumn[k]);
       if (!m_first[e]) continue;
       inner[m_slot[e]] = m_row[e];
       ++outer[m_col[e] + 1];
     }
-    for (int j = 0; j < n; ++j) outer[j + 1] += outer[j];
+    for (Eigen::Index j = 0; j < columns; ++j) outer[j + 1] += outer[j];
   }
 };
 
