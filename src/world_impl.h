@@ -103,6 +103,7 @@ struct World::Impl final : bullet::SolverHooks {
   // the blocks are built again.
   std::vector<std::pair<int32_t, int32_t>> bodyContacts, bodyContactsScratch;
   std::vector<char> unprojected;  // per deformable: in a block that could not project this step
+  std::vector<NodePairStiffness> implicitStiffness;  // scratch of prepareRows: h D + h² K_e for the blocks
   std::vector<Vec3> stepStartPositions;  // node positions before this step moved them
   std::vector<Vec3> stepStartVelocities;  // and their velocities before the models changed them
   std::vector<Vec3> modelVelocityChange;  // per node: what the models add over the step, per substep

@@ -16,7 +16,8 @@ void World::Impl::prepareRows(double h) {
     block.addContacts(rows, rigid, settings.solver.contactSlop);
     anyRows |= block.scalarRowCount() > 0;
   }
-  std::vector<NodePairStiffness> elastic;  // h D + h² K_e of the implicit bodies, for their blocks
+  std::vector<NodePairStiffness>& elastic = implicitStiffness;  // h D + h² K_e of the implicit bodies
+  elastic.clear();
   if (anyRows)
     for (const DeformableRecord& body : deformables)
       if (body.implicitStep) addImplicitStiffness(body.implicit, nodes, h, elastic);
