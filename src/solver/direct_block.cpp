@@ -606,18 +606,26 @@ void DirectBlock::addRowImpulses(ConstraintRows& rows, const Eigen::VectorXd& de
   }
 }
 
-void DirectBlock::writeImpulseOnDofs(const ContactRow& row, const Vec3& axis, ColumnBlock& target, Eigen::Index column) const {
+template <typename Visit>
+void DirectBlock::visitImpulseOnDofs(const ContactRow& row, const Vec3& axis, Visit&& visit) const {
   for (int k = 0; k < 4; ++k) {
     const int32_t local = localNode(row.node[k]);
     if (row.coefficient[k] != 0.0 && local >= 0 && m_nodeDof[local] >= 0)
-      target.col(column).segment<3>(m_nodeDof[local]) += row.coefficient[k] * axis;
+      visit(m_nodeDof[local], Vec3(row.coefficient[k] * axis));
   }
   const auto body = std::find(m_bodies.begin(), m_bodies.end(), row.body);
   if (row.body >= 0 && body != m_bodies.end() && m_bodyDof[body - m_bodies.begin()] >= 0) {
     const BodyMotion& motion = m_bodyMotion[static_cast<size_t>(body - m_bodies.begin())];
-    target.col(column).segment(m_bodyDof[body - m_bodies.begin()], motion.freedoms) =
+    const Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1> generalised =
         motion.generalisedImpulse(-axis, row.offset).head(motion.freedoms);
+    visit(m_bodyDof[body - m_bodies.begin()], generalised);
   }
+}
+
+void DirectBlock::writeImpulseOnDofs(const ContactRow& row, const Vec3& axis, ColumnBlock& target, Eigen::Index column) const {
+  visitImpulseOnDofs(row, axis, [&](int32_t dof, const auto& entries) {
+    target.col(column).segment(dof, entries.size()) += entries;
+  });
 }
 
 void DirectBlock::computeFrictionResponses(const ConstraintRows& rows) {
@@ -638,25 +646,22 @@ void DirectBlock::computeFrictionResponses(const ConstraintRows& rows) {
     writeImpulseOnDofs(row, row.tangent1, m_columns, response.column);
     writeImpulseOnDofs(row, row.tangent2, m_columns, response.column + 1);
   }
-  m_frictionApplied = m_columns.topRows(m_dofCount);
   solveKktColumns(m_columns, true);
-  // As in solve(): velocities from the impulses, M Δv = f + Jᵀ Δλ − h² K Δv (momentum-exact).
+  // The solution's top is the velocity change Δv of the block's degrees of freedom (in a body's
+  // free directions), its bottom −Δλ of the rows (a released row's, none).
   m_frictionImpulse = -m_columns.bottomRows(rowCount);
   for (int32_t q = 0; q < rowCount; ++q)
     if (m_released[q]) m_frictionImpulse.row(q).setZero();
-  m_frictionVelocity = m_frictionApplied;
-  m_frictionVelocity.noalias() += m_jacobianT * m_frictionImpulse;
-  m_frictionVelocity.noalias() -= m_stiffness * m_columns.topRows(m_dofCount);
-  toVelocityChange(m_frictionVelocity);
+  m_frictionVelocity = m_columns.topRows(m_dofCount);
   size_t kept = 0;
   for (const FrictionResponse& response : m_friction) {
-    Eigen::Matrix2d w;
+    const ContactRow& row = rows.contacts[m_rows[response.row].index];
+    Eigen::Matrix2d w = Eigen::Matrix2d::Zero();  // W = fₐᵀ Δv_b, fₐ the unit tangential impulses
     for (int a = 0; a < 2; ++a)
-      for (int b = 0; b < 2; ++b) {  // (as contiguous vectors: the dot product sums in the same order as before)
-        m_solution = m_frictionApplied.col(response.column + a);
-        m_velocityChange = m_frictionVelocity.col(response.column + b);
-        w(a, b) = m_solution.dot(m_velocityChange);
-      }
+      for (int b = 0; b < 2; ++b)
+        visitImpulseOnDofs(row, a == 0 ? row.tangent1 : row.tangent2, [&](int32_t dof, const auto& entries) {
+          w(a, b) += entries.dot(m_frictionVelocity.col(response.column + b).segment(dof, entries.size()));
+        });
     // A contact point that cannot slide relative to anything movable has no friction to solve.
     if (w.determinant() <= 1e-18 * std::max(1.0, w.squaredNorm())) continue;
     m_friction[kept] = response;

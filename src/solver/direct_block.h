@@ -199,7 +199,7 @@ class DirectBlock {
     Eigen::Matrix2d effectiveMass = Eigen::Matrix2d::Zero();  // W⁻¹
   };
   std::vector<FrictionResponse> m_friction;
-  ColumnBlock m_frictionApplied, m_frictionVelocity;  // dofs × 2 per contact: f, then Δv
+  ColumnBlock m_frictionVelocity;                     // dofs × 2 per contact: Δv
   ColumnBlock m_frictionImpulse;                      // rows × 2 per contact: Δλ
   bool m_frictionStale = true;  // the system changed since the responses were computed
 
@@ -210,6 +210,9 @@ class DirectBlock {
   void applyVelocityChange(const Eigen::VectorXd& change, SolverContext& ctx) const;
   // Jᵀ of a row along `axis` written into a column of `target` (zero there before).
   void writeImpulseOnDofs(const ContactRow& row, const Vec3& axis, ColumnBlock& target, Eigen::Index column) const;
+  // The same entries handed to visit(first degree of freedom, values).
+  template <typename Visit>
+  void visitImpulseOnDofs(const ContactRow& row, const Vec3& axis, Visit&& visit) const;
   int32_t localNode(int32_t node) const;  // index among the block's nodes, or −1
   int32_t globalNode(int32_t local) const;
   const NodeRange& rangeOf(int32_t node) const;  // of one of the block's nodes
