@@ -118,6 +118,7 @@ struct World::Impl final : bullet::SolverHooks {
   // Scratch of limitStrainOfUnprojectedRows, kept so that the step allocates nothing once grown.
   struct StrainLimitingScratch {
     std::vector<int32_t> rows;           // the rows limited
+    std::vector<LimitedEdge> edges;      // theirs that can move, as the passes read them
     std::vector<char> limitedBody;       // per deformable: has some
     std::vector<double> weight;          // per node: its inverse mass in the passes, 0 if held
     std::vector<CollisionRigid> shapes;  // per rigid body touched: its shape where it is

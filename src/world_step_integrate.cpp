@@ -79,9 +79,12 @@ void World::Impl::limitStrainOfUnprojectedRows() {
       }
     }
   }
+  scratch.edges.clear();
+  for (int32_t r : scratch.rows)
+    if (LimitedEdge edge; makeLimitedEdge(rows.inextensibility[r], scratch.weight, edge)) scratch.edges.push_back(edge);
   scratch.before = nodes.position;
   scratch.pushed.assign(nodes.size(), Vec3::Zero());
-  limitStrain(rows.inextensibility, scratch.rows, scratch.touching, nodes.position, scratch.weight, scratch.pushed);
+  limitStrain(scratch.edges, scratch.touching, nodes.position, scratch.pushed);
   for (size_t n = 0; n < nodes.size(); ++n)
     nodes.velocity[n] += (nodes.position[n] - scratch.before[n] - scratch.pushed[n]) / timeStep;
 }

@@ -62,24 +62,50 @@ struct NodeOnShape {
   double thickness;
 };
 
-// One projection of an edge; `weight` is the nodes' inverse mass for this pass (0: immovable).
-// Returns the relative excess it removed.
-inline double limitEdge(const InextensibilityRow& row, std::span<Vec3> x, std::span<const double> weight) {
+// An edge as the passes read it: its nodes, the bounds it is kept within and each node's share
+// of a correction, w / (wᵢ + w_j), fixed for the call (a node's weight does not change in it).
+struct LimitedEdge {
+  int32_t node[2];
+  double share[2];
+  double restLength;
+  double longest;   // (1 + ε) L, or ∞ where the row may stretch (it has a force bound)
+  double shortest;  // (1 − ε) L, or −1 where it may compress
+  // Squared lengths strictly between these need no correction (a margin of 10⁻⁹ inside the
+  // bounds, so that the square root is taken only near or past them, with the same result).
+  double clearAbove, clearBelow;
+};
+
+// The edge of `row` for the passes; false when neither node can move.
+inline bool makeLimitedEdge(const InextensibilityRow& row, std::span<const double> weight, LimitedEdge& edge) {
   const double wi = weight[row.node[0]], wj = weight[row.node[1]];
-  if (wi + wj == 0.0) return 0.0;
-  const Vec3 d = x[row.node[1]] - x[row.node[0]];
-  const double length = d.norm();
+  if (wi + wj == 0.0) return false;
+  edge.node[0] = row.node[0];
+  edge.node[1] = row.node[1];
+  edge.share[0] = wi / (wi + wj);
+  edge.share[1] = wj / (wi + wj);
+  edge.restLength = row.restLength;
+  edge.longest = std::isinf(row.lambdaMin) ? (1 + kStrainTolerance) * row.restLength : INFINITY;
+  edge.shortest = std::isinf(row.lambdaMax) ? (1 - kStrainTolerance) * row.restLength : -1.0;
+  edge.clearAbove = edge.longest * edge.longest * (1 - 1e-9);
+  edge.clearBelow = edge.shortest > 0 ? edge.shortest * edge.shortest * (1 + 1e-9) : -INFINITY;
+  return true;
+}
+
+// One projection of an edge. Returns the relative excess it removed.
+inline double limitEdge(const LimitedEdge& edge, std::span<Vec3> x) {
+  const Vec3 d = x[edge.node[1]] - x[edge.node[0]];
+  const double squared = d.squaredNorm();
+  if (squared < edge.clearAbove && squared > edge.clearBelow) return 0.0;
+  const double length = std::sqrt(squared);
   if (length < 1e-12) return 0.0;
   double excess = 0.0;
-  if (std::isinf(row.lambdaMin) && length > (1 + kStrainTolerance) * row.restLength)
-    excess = length - (1 + kStrainTolerance) * row.restLength;
-  if (std::isinf(row.lambdaMax) && length < (1 - kStrainTolerance) * row.restLength)
-    excess = length - (1 - kStrainTolerance) * row.restLength;
+  if (length > edge.longest) excess = length - edge.longest;
+  if (length < edge.shortest) excess = length - edge.shortest;
   if (excess == 0.0) return 0.0;
   const Vec3 n = d / length;
-  x[row.node[0]] += (wi / (wi + wj) * excess) * n;
-  x[row.node[1]] -= (wj / (wi + wj) * excess) * n;
-  return std::abs(excess) / row.restLength;
+  x[edge.node[0]] += (edge.share[0] * excess) * n;
+  x[edge.node[1]] -= (edge.share[1] * excess) * n;
+  return std::abs(excess) / edge.restLength;
 }
 
 inline void keepOutOfShape(const NodeOnShape& contact, std::span<Vec3> x, std::span<Vec3> pushed) {
@@ -92,14 +118,13 @@ inline void keepOutOfShape(const NodeOnShape& contact, std::span<Vec3> x, std::s
   pushed[contact.node] += push;
 }
 
-// `limited`: indices into `rows`. (The projections are not added to the rows' λ: warm started
-// with them, the sweep applied them a second time and a draped cloth slid off its sphere.)
-inline void limitStrain(std::span<const InextensibilityRow> rows, std::span<const int32_t> limited,
-                        std::span<const NodeOnShape> contacts, std::span<Vec3> x, std::span<const double> weight,
+// (The projections are not added to the rows' λ: warm started with them, the sweep applied them
+// a second time and a draped cloth slid off its sphere.)
+inline void limitStrain(std::span<const LimitedEdge> edges, std::span<const NodeOnShape> contacts, std::span<Vec3> x,
                         std::span<Vec3> pushed) {
   for (int pass = 0; pass < kStrainPassesAtMost; ++pass) {
     double worst = 0.0;
-    for (int32_t r : limited) worst = std::max(worst, limitEdge(rows[r], x, weight));
+    for (const LimitedEdge& edge : edges) worst = std::max(worst, limitEdge(edge, x));
     const bool last = worst < kStrainConverged || (pass >= kStrainPasses && worst < kStrainStillTooFar) ||
                       pass + 1 == kStrainPassesAtMost;
     if (last || pass % kStrainPushOutEvery == 0)
