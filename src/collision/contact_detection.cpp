@@ -106,11 +106,10 @@ struct Detector {
     const double reach = boundingRadius(shape.shape->shape) + surface.thickness;
     const Mat3 rotation = shape.orientation.toRotationMatrix();
     for (int32_t n : surface.nodes) {
-      if (anchored.count(nodeBodyKey(n, body))) continue;
       const Vec3& x = nodes.position[n];
       const Vec3 rigidVelocity = shape.linearVelocity + shape.angularVelocity.cross(x - shape.position);
       const double margin = closing(nodes.velocity[n], rigidVelocity) + surface.thickness;
-      if ((x - shape.position).norm() > reach + margin) continue;
+      if ((x - shape.position).norm() > reach + margin || anchored.count(nodeBodyKey(n, body))) continue;
       const geometry::ShapeDistance d =
           geometry::distanceToShape(*shape.shape, rotation.transpose() * (x - shape.position), surface.thickness + margin);
       const double gap = d.distance - surface.thickness;
@@ -190,14 +189,14 @@ struct Detector {
     const Vec3 axis = rotation * Vec3(0, form.halfHeight, 0);
     const double bodySpeed = shape.linearVelocity.norm() + shape.angularVelocity.norm() * boundingRadius(form);
     for (const auto& face : surface.triangles) {
-      if (anchored.count(nodeBodyKey(face[0], body)) || anchored.count(nodeBodyKey(face[1], body)) ||
-          anchored.count(nodeBodyKey(face[2], body)))
-        continue;
       const Vec3 &a = nodes.position[face[0]], &b = nodes.position[face[1]], &c = nodes.position[face[2]];
       const Vec3 centre = (a + b + c) / 3.0;
       const double size = std::max({(a - centre).norm(), (b - centre).norm(), (c - centre).norm()});
       const double margin = closing(nodes.velocity[face[0]], shape.linearVelocity) + size;
       if ((centre - shape.position).norm() > reach + margin) continue;
+      if (anchored.count(nodeBodyKey(face[0], body)) || anchored.count(nodeBodyKey(face[1], body)) ||
+          anchored.count(nodeBodyKey(face[2], body)))
+        continue;
       if (form.type == ShapeType::Sphere) {
         pointAgainstFace(surface, face, body, shape.position, form.radius, 0);
       } else if (form.type == ShapeType::Capsule) {
