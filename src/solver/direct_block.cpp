@@ -542,19 +542,16 @@ void DirectBlock::solve(ConstraintRows& rows, SolverContext& ctx, SweepStats& st
   for (int32_t r = 0; r < rowCount; ++r) stats.add(deltaLambda[r]);
 }
 
-// Impulses on the block's degrees of freedom (a column each) turned, in place, into the velocity
-// changes they make: m⁻¹ per node, (Gᵀ 𝕄 G)⁻¹ per body.
-template <typename Impulses>
-void DirectBlock::toVelocityChange(Impulses& impulses) const {
+// Impulses on the block's degrees of freedom turned, in place, into the velocity changes they
+// make: m⁻¹ per node, (Gᵀ 𝕄 G)⁻¹ per body.
+void DirectBlock::toVelocityChange(Eigen::VectorXd& impulses) const {
   for (int32_t n = 0; n < m_nodeCount; ++n)
-    if (m_nodeDof[n] >= 0) impulses.template middleRows<3>(m_nodeDof[n]) *= m_inverseMass[m_nodeDof[n]];
+    if (m_nodeDof[n] >= 0) impulses.segment<3>(m_nodeDof[n]) *= m_inverseMass[m_nodeDof[n]];
   for (size_t b = 0; b < m_bodies.size(); ++b) {
     if (m_bodyDof[b] < 0) continue;
     const int k = m_bodyMotion[b].freedoms;
-    for (Eigen::Index c = 0; c < impulses.cols(); ++c) {
-      const Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1> generalised = impulses.col(c).segment(m_bodyDof[b], k);
-      impulses.col(c).segment(m_bodyDof[b], k) = m_bodyMotion[b].inverseMass.topLeftCorner(k, k) * generalised;
-    }
+    const Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1> generalised = impulses.segment(m_bodyDof[b], k);
+    impulses.segment(m_bodyDof[b], k) = m_bodyMotion[b].inverseMass.topLeftCorner(k, k) * generalised;
   }
 }
 
@@ -658,10 +655,10 @@ void DirectBlock::computeFrictionResponses(const ConstraintRows& rows) {
     const ContactRow& row = rows.contacts[m_rows[response.row].index];
     Eigen::Matrix2d w = Eigen::Matrix2d::Zero();  // W = fₐᵀ Δv_b, fₐ the unit tangential impulses
     for (int a = 0; a < 2; ++a)
-      for (int b = 0; b < 2; ++b)
-        visitImpulseOnDofs(row, a == 0 ? row.tangent1 : row.tangent2, [&](int32_t dof, const auto& entries) {
+      visitImpulseOnDofs(row, a == 0 ? row.tangent1 : row.tangent2, [&](int32_t dof, const auto& entries) {
+        for (int b = 0; b < 2; ++b)
           w(a, b) += entries.dot(m_frictionVelocity.col(response.column + b).segment(dof, entries.size()));
-        });
+      });
     // A contact point that cannot slide relative to anything movable has no friction to solve.
     if (w.determinant() <= 1e-18 * std::max(1.0, w.squaredNorm())) continue;
     m_friction[kept] = response;

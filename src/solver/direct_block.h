@@ -205,8 +205,7 @@ class DirectBlock {
 
   void computeFrictionResponses(const ConstraintRows& rows);
   void addRowImpulses(ConstraintRows& rows, const Eigen::VectorXd& deltaLambda, SolverContext& ctx) const;
-  template <typename Impulses>
-  void toVelocityChange(Impulses& impulses) const;  // each column
+  void toVelocityChange(Eigen::VectorXd& impulses) const;
   void applyVelocityChange(const Eigen::VectorXd& change, SolverContext& ctx) const;
   // Jᵀ of a row along `axis` written into a column of `target` (zero there before).
   void writeImpulseOnDofs(const ContactRow& row, const Vec3& axis, ColumnBlock& target, Eigen::Index column) const;
