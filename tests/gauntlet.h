@@ -12,6 +12,7 @@
 #include <cmath>
 #include <functional>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -282,11 +283,16 @@ inline Outcome clothOnSphere(const std::string& file, double seconds, const Over
 }
 
 // A small fast ball into a cloth pinned along its edges never ends up on its far side.
-inline Outcome projectile(int speed, const Override& override = {}) {
+// `launchSpeed` (m/s, downwards), when given, replaces the scene's: the same ball dropped gently.
+inline Outcome projectile(int speed, const Override& override = {}, std::optional<double> launchSpeed = {}) {
   Outcome result;
   Run run("gauntlet/projectile_" + std::to_string(speed) + ".json", override, result);
   if (!run.ok()) return result;
   const RigidBodyId ball = run.body("ball");
+  if (launchSpeed && !run.world.setRigidLinearVelocity(ball, Vec3(0, -*launchSpeed, 0)).ok()) {
+    result.error = "could not set the ball's speed";
+    return result;
+  }
   const DeformableId cloth = run.deformable("cloth");
   double lowest = INFINITY;  // of the ball's centre above the cloth node nearest it across
   run.run(0, [&] {
