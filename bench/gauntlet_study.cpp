@@ -33,6 +33,7 @@ int main(int argc, char** argv) {
       {"cloth 201", [](const Override& o) { return clothOnSphere("gauntlet/cloth_sphere_201.json", 1.5, o); }},
       {"projectile 20", [](const Override& o) { return projectile(20, o); }},
       {"projectile 60", [](const Override& o) { return projectile(60, o); }},
+      {"projectile drop", [](const Override& o) { return projectile(20, o, 0.5); }},
       {"rope wheel", [](const Override& o) { return ropeWheel(o); }},
       {"hammock", [](const Override& o) { return restOnCloth("hammock.json", "hammock", o); }},
       {"box stack", [](const Override& o) { return restOnCloth("gauntlet/box_stack_on_cloth.json", "hammock", o); }},

@@ -124,6 +124,7 @@ struct World::Impl final : bullet::SolverHooks {
     std::vector<CollisionRigid> shapes;  // per rigid body touched: its shape where it is
     std::vector<char> touched;           // per deformable × rigid body
     std::vector<NodeOnShape> touching;   // nodes kept out of those shapes
+    std::vector<FaceOnCore> faces;       // faces kept off round bodies' cores
     std::vector<Vec3> before, pushed;    // per node
   } strainScratch;
 

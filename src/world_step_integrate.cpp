@@ -79,12 +79,25 @@ void World::Impl::limitStrainOfUnprojectedRows() {
       }
     }
   }
+  // Their faces that contacts found near a round body's core, kept off it.
+  scratch.faces.clear();
+  for (const ContactRow& row : rows.contacts) {
+    if (row.body < 0 || row.isNodeOnRigid() || row.node[1] == row.node[0] || row.node[2] == row.node[0] ||
+        !scratch.limitedBody[deformableIndexOfNode(row.node[0])])
+      continue;
+    const CollisionRigid& shape = scratch.shapes[static_cast<size_t>(row.body)];
+    if (shape.shape == nullptr) continue;
+    const RigidShape& form = shape.shape->shape;
+    if (form.type != ShapeType::Sphere && form.type != ShapeType::Capsule) continue;
+    scratch.faces.push_back({{row.node[0], row.node[1], row.node[2]}, &shape,
+                             form.radius + deformableOfNode(row.node[0]).collision.thickness, row.normal});
+  }
   scratch.edges.clear();
   for (int32_t r : scratch.rows)
     if (LimitedEdge edge; makeLimitedEdge(rows.inextensibility[r], scratch.weight, edge)) scratch.edges.push_back(edge);
   scratch.before = nodes.position;
   scratch.pushed.assign(nodes.size(), Vec3::Zero());
-  limitStrain(scratch.edges, scratch.touching, nodes.position, scratch.pushed);
+  limitStrain(scratch.edges, scratch.touching, scratch.faces, scratch.weight, nodes.position, scratch.pushed);
   for (size_t n = 0; n < nodes.size(); ++n)
     nodes.velocity[n] += (nodes.position[n] - scratch.before[n] - scratch.pushed[n]) / timeStep;
 }
