@@ -272,6 +272,8 @@ TEST(Contact, BoxLiftedOffAHammockLeavesTheClothBehind) {
 // edges drew the nodes round the ball's sides until it fell between them
 // (src/solver/strain_limiting.h, FaceOnCore). Measured before that: through at 2 and 5 m/s. A
 // capsule (a core segment rather than a point) lying across the sheet is kept off the same way.
+// Not yet at every speed: at 3, 4, 6, 7, 8 and 10 m/s the ball still ends up under the cloth
+// (DISABLED_ cases below; docs/solver.md, tenth session).
 struct BallDrop {
   bool capsule;
   double speed;
@@ -325,6 +327,9 @@ TEST_P(BallOntoPinnedCloth, IsHeldAndGainsNoEnergy) {
 INSTANTIATE_TEST_SUITE_P(Speeds, BallOntoPinnedCloth,
                          ::testing::Values(BallDrop{false, 1.0}, BallDrop{false, 2.0}, BallDrop{false, 5.0},
                                            BallDrop{true, 2.0}, BallDrop{true, 5.0}));
+INSTANTIATE_TEST_SUITE_P(DISABLED_SpeedsNotYetHeld, BallOntoPinnedCloth,
+                         ::testing::Values(BallDrop{false, 3.0}, BallDrop{false, 4.0}, BallDrop{false, 6.0},
+                                           BallDrop{false, 7.0}, BallDrop{false, 8.0}, BallDrop{false, 10.0}));
 
 // ---- A corner into a coarse face ----------------------------------------------------------
 
