@@ -108,6 +108,7 @@ void World::Impl::buildDirectBlocks() {
     block.claimRows(rows);
     directBlocks.push_back(std::move(block));
   }
+  rows.colourSweptEdges(nodes.size());
   directBlocksStale = false;
 }
 

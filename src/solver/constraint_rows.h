@@ -42,6 +42,23 @@ struct ConstraintRows {
         m_contactScratch);
   }
 
+  // The swept inextensibility rows (those no direct block holds) as an index list sorted by
+  // colour: a colour's edges share no node. Built with the direct blocks, which decide which
+  // edges are swept (the rows do not change between). Bending rows are swept in the order they
+  // were made: sorted the same way, a 6 m/s ball dropped on a pinned cloth gained energy
+  // 76-fold (docs/solver.md, tenth session).
+  std::vector<int32_t> sweptEdges;
+  ColourRanges sweptEdgeColours;
+
+  void colourSweptEdges(size_t nodeCount) {
+    sweptEdgeColours = colourIndices(
+        inextensibility, [](const InextensibilityRow& row) { return !row.inDirectBlock; }, nodeCount,
+        [](const InextensibilityRow& row, auto add) {
+          for (int32_t node : row.node) add(static_cast<size_t>(node));
+        },
+        sweptEdges, m_usedColours);
+  }
+
   // Scalar rows per type (a fixed point or an anchor is three; friction two per contact).
   std::array<int, static_cast<size_t>(RowType::Count)> countRows() const {
     int friction = 0;
@@ -98,8 +115,7 @@ struct ConstraintRows {
       if (row.active) solveGrab(row, ctx, stats);
     for (FixedPointRow& row : fixedPoints)
       if (!row.inDirectBlock) solveFixedPoint(row, ctx, stats);
-    for (InextensibilityRow& row : inextensibility)
-      if (!row.inDirectBlock) solveInextensibility(row, ctx, stats);
+    for (int32_t r : sweptEdges) solveInextensibility(inextensibility[static_cast<size_t>(r)], ctx, stats);
     for (BendingRow& row : bending) solveBending(row, ctx, stats);
     for (AnchorRow& row : anchors)
       if (!row.inDirectBlock) solveAnchor(row, ctx, stats);
@@ -120,6 +136,7 @@ struct ConstraintRows {
 
  private:
   ColouringScratch<ContactRow> m_contactScratch;
+  std::vector<uint32_t> m_usedColours;
 };
 
 }  // namespace tandem

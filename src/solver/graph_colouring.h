@@ -11,11 +11,12 @@
 // thread. // Static, kinematic and sleeping bodies are shared freely: rows only read them. The sort is
 // stable, so a colour keeps its rows in the order they were made.
 //
-// Which arrays: contacts, every step after detection. Fixed points, anchors and grabs keep their
-// order: their indices are the public ids, and they are few. Inextensibility and bending rows
-// sorted the same way when a deformable was added made a hammock's direct block stop holding a
-// box resting on it (Contact.BoxLiftedOffAHammockLeavesTheClothBehind: the box fell through
-// with its contacts in place), not yet understood; they keep the order they were made in.
+// Which arrays: contacts, sorted every step after detection. Fixed points, anchors and grabs keep
+// their order: their indices are the public ids, and they are few. Inextensibility rows keep the
+// order they were made in, which the direct blocks and strain limiting read (the array sorted by
+// colour changed where a box landed in a hammock: docs/solver.md, sixth session); the sweep goes
+// through the swept ones in colour order by an index list, coloured again whenever the direct
+// blocks are built (colourIndices). Bending rows are not coloured yet (constraint_rows.h).
 #pragma once
 
 #include <array>
@@ -77,6 +78,37 @@ ColourRanges colourRows(std::vector<Row>& rows, size_t resourceCount, ResourcesO
   scratch.sorted.resize(rows.size());
   for (size_t r = 0; r < rows.size(); ++r) scratch.sorted[static_cast<size_t>(next[scratch.colour[r]]++)] = rows[r];
   rows.swap(scratch.sorted);
+  return ranges;
+}
+
+// The same colouring as an index list: `order` gets the indices of the rows for which
+// `included(row)` holds, grouped by colour, each colour in the rows' order. The rows stay where
+// they are.
+template <class Row, class Included, class ResourcesOf>
+ColourRanges colourIndices(const std::vector<Row>& rows, Included included, size_t resourceCount,
+                           ResourcesOf resourcesOf, std::vector<int32_t>& order, std::vector<uint32_t>& usedColours) {
+  usedColours.assign(resourceCount, 0u);
+  order.clear();
+  std::array<std::vector<int32_t>, kColourCount + 1> byColour;
+  for (size_t r = 0; r < rows.size(); ++r) {
+    if (!included(rows[r])) continue;
+    uint32_t taken = 0;
+    resourcesOf(rows[r], [&](size_t id) { taken |= usedColours[id]; });
+    int colour = kColourCount;
+    for (int c = 0; c < kColourCount; ++c)
+      if (!(taken & (1u << c))) {
+        colour = c;
+        break;
+      }
+    if (colour < kColourCount) resourcesOf(rows[r], [&](size_t id) { usedColours[id] |= 1u << colour; });
+    byColour[static_cast<size_t>(colour)].push_back(static_cast<int32_t>(r));
+  }
+  ColourRanges ranges;
+  for (int c = 0; c <= kColourCount; ++c) {
+    const std::vector<int32_t>& rowsOfColour = byColour[static_cast<size_t>(c)];
+    order.insert(order.end(), rowsOfColour.begin(), rowsOfColour.end());
+    ranges.start[static_cast<size_t>(c) + 1] = static_cast<int32_t>(order.size());
+  }
   return ranges;
 }
 
