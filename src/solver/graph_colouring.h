@@ -8,7 +8,7 @@
 // Greedy, in the array's order: each row takes the lowest colour that none of its nodes or
 // bodies has yet (one bit per colour per node or body); a row that finds none of the
 // kColourCount colours free goes to the overflow, the last range, solved in order by one
-// thread. // Static, kinematic and sleeping bodies are shared freely: rows only read them. The sort is
+// thread. Static, kinematic and sleeping bodies are shared freely: rows only read them. The sort is
 // stable, so a colour keeps its rows in the order they were made.
 //
 // Which arrays: contacts, sorted every step after detection. Fixed points, anchors and grabs keep
@@ -48,6 +48,20 @@ struct ColouringScratch {
   std::vector<Row> sorted;
 };
 
+// The lowest colour that none of the row's resources has taken, then taken for them all; the
+// overflow, kColourCount, when every colour is.
+template <class Row, class ResourcesOf>
+int takeColour(const Row& row, ResourcesOf& resourcesOf, std::vector<uint32_t>& usedColours) {
+  uint32_t taken = 0;
+  resourcesOf(row, [&](size_t id) { taken |= usedColours[id]; });
+  for (int c = 0; c < kColourCount; ++c)
+    if (!(taken & (1u << c))) {
+      resourcesOf(row, [&](size_t id) { usedColours[id] |= 1u << c; });
+      return c;
+    }
+  return kColourCount;
+}
+
 // Sorts `rows` by colour. `resourceCount` bounds the resource ids; `resourcesOf(row, add)`
 // calls add(id) for each node or dynamic body the row writes.
 template <class Row, class ResourcesOf>
@@ -58,15 +72,7 @@ ColourRanges colourRows(std::vector<Row>& rows, size_t resourceCount, ResourcesO
   scratch.colour.resize(rows.size());
   std::array<int32_t, kColourCount + 1> count{};
   for (size_t r = 0; r < rows.size(); ++r) {
-    uint32_t taken = 0;
-    resourcesOf(rows[r], [&](size_t id) { taken |= scratch.usedColours[id]; });
-    int colour = kColourCount;  // the overflow
-    for (int c = 0; c < kColourCount; ++c)
-      if (!(taken & (1u << c))) {
-        colour = c;
-        break;
-      }
-    if (colour < kColourCount) resourcesOf(rows[r], [&](size_t id) { scratch.usedColours[id] |= 1u << colour; });
+    const int colour = takeColour(rows[r], resourcesOf, scratch.usedColours);
     scratch.colour[r] = static_cast<uint8_t>(colour);
     ++count[static_cast<size_t>(colour)];
   }
@@ -92,16 +98,7 @@ ColourRanges colourIndices(const std::vector<Row>& rows, Included included, size
   std::array<std::vector<int32_t>, kColourCount + 1> byColour;
   for (size_t r = 0; r < rows.size(); ++r) {
     if (!included(rows[r])) continue;
-    uint32_t taken = 0;
-    resourcesOf(rows[r], [&](size_t id) { taken |= usedColours[id]; });
-    int colour = kColourCount;
-    for (int c = 0; c < kColourCount; ++c)
-      if (!(taken & (1u << c))) {
-        colour = c;
-        break;
-      }
-    if (colour < kColourCount) resourcesOf(rows[r], [&](size_t id) { usedColours[id] |= 1u << colour; });
-    byColour[static_cast<size_t>(colour)].push_back(static_cast<int32_t>(r));
+    byColour[static_cast<size_t>(takeColour(rows[r], resourcesOf, usedColours))].push_back(static_cast<int32_t>(r));
   }
   ColourRanges ranges;
   for (int c = 0; c <= kColourCount; ++c) {
