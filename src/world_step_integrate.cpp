@@ -85,8 +85,7 @@ void World::Impl::limitStrainOfUnprojectedRows() {
     if (row.body < 0 || row.isNodeOnRigid() || row.node[1] == row.node[0] || row.node[2] == row.node[0] ||
         !scratch.limitedBody[deformableIndexOfNode(row.node[0])])
       continue;
-    const CollisionRigid& shape = scratch.shapes[static_cast<size_t>(row.body)];
-    if (shape.shape == nullptr) continue;
+    const CollisionRigid& shape = scratch.shapes[static_cast<size_t>(row.body)];  // set above: it touched
     const RigidShape& form = shape.shape->shape;
     if (form.type != ShapeType::Sphere && form.type != ShapeType::Capsule) continue;
     scratch.faces.push_back({{row.node[0], row.node[1], row.node[2]}, &shape,

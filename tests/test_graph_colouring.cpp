@@ -1,5 +1,5 @@
-// The sweep's layout for the parallel step (src/solver/graph_colouring.h): the swept edges of a
-// cloth, coloured as an index list, so that no two edges of one colour share a node.
+// The sweep's layout for the parallel step (src/solver/graph_colouring.h): a cloth's edges
+// coloured as an index list or sorted by colour, so that no two rows of one colour share a node.
 #include "solver/constraint_rows.h"
 
 #include <tandem/mesh.h>
@@ -58,6 +58,35 @@ TEST(GraphColouring, SweptEdgesOfAColourShareNoNodeAndKeepTheirOrder) {
         EXPECT_LT(rows.sweptEdges[static_cast<size_t>(i) - 1], rows.sweptEdges[static_cast<size_t>(i)]);
       }
     }
+  }
+}
+
+// colourRows (the contacts' every step) sorts the rows themselves by the same colours.
+TEST(GraphColouring, RowsSortedByColourShareNoNodeWithinAColour) {
+  const int side = 21;
+  ConstraintRows rows = clothEdges(side);
+  const auto nodesOf = [](const InextensibilityRow& row, auto add) {
+    for (int32_t node : row.node) add(static_cast<size_t>(node));
+  };
+  std::vector<InextensibilityRow> sorted = rows.inextensibility;
+  ColouringScratch scratch;
+  std::vector<int32_t> order;
+  std::vector<InextensibilityRow> buffer;
+  const ColourRanges colours = colourRows(sorted, static_cast<size_t>(side * side), nodesOf, scratch, order, buffer);
+  ASSERT_EQ(sorted.size(), rows.inextensibility.size());
+  EXPECT_EQ(colours.end(kColourCount), static_cast<int32_t>(sorted.size()));
+  for (size_t i = 0; i < sorted.size(); ++i)  // row i of the sorted array is row order[i] of the original
+    EXPECT_EQ(sorted[i].node, rows.inextensibility[static_cast<size_t>(order[i])].node);
+  std::vector<int32_t> all = order;
+  std::sort(all.begin(), all.end());
+  for (size_t i = 0; i < all.size(); ++i) ASSERT_EQ(all[i], static_cast<int32_t>(i)) << "each row once";
+  for (int c = 0; c < kColourCount; ++c) {
+    std::vector<char> seen(static_cast<size_t>(side * side), 0);
+    for (int32_t i = colours.begin(c); i < colours.end(c); ++i)
+      for (int32_t node : sorted[static_cast<size_t>(i)].node) {
+        EXPECT_FALSE(seen[static_cast<size_t>(node)]) << "colour " << c << " writes node " << node << " twice";
+        seen[static_cast<size_t>(node)] = 1;
+      }
   }
 }
 

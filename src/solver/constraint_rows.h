@@ -39,7 +39,7 @@ struct ConstraintRows {
             if (row.coefficient[k] != 0.0) add(static_cast<size_t>(row.node[k]));
           if (row.body >= 0 && isDynamic(row.body)) add(nodeCount + static_cast<size_t>(row.body));
         },
-        m_contactScratch);
+        m_colouring, m_contactOrder, m_sortedContacts);
   }
 
   // The swept inextensibility rows (those no direct block holds) as an index list sorted by
@@ -56,7 +56,7 @@ struct ConstraintRows {
         [](const InextensibilityRow& row, auto add) {
           for (int32_t node : row.node) add(static_cast<size_t>(node));
         },
-        sweptEdges, m_usedColours);
+        sweptEdges, m_colouring);
   }
 
   // Scalar rows per type (a fixed point or an anchor is three; friction two per contact).
@@ -135,8 +135,9 @@ struct ConstraintRows {
   }
 
  private:
-  ColouringScratch<ContactRow> m_contactScratch;
-  std::vector<uint32_t> m_usedColours;
+  ColouringScratch m_colouring;
+  std::vector<int32_t> m_contactOrder;
+  std::vector<ContactRow> m_sortedContacts;
 };
 
 }  // namespace tandem

@@ -40,12 +40,10 @@ struct ColourRanges {
   }
 };
 
-// Reusable buffers: colouring a contact array every step allocates nothing once they are grown.
-template <class Row>
+// Reusable buffers: colouring allocates nothing once they are grown.
 struct ColouringScratch {
   std::vector<uint32_t> usedColours;  // per node or body: a bit per colour taken
   std::vector<uint8_t> colour;        // per row
-  std::vector<Row> sorted;
 };
 
 // The lowest colour that none of the row's resources has taken, then taken for them all; the
@@ -62,16 +60,23 @@ int takeColour(const Row& row, ResourcesOf& resourcesOf, std::vector<uint32_t>& 
   return kColourCount;
 }
 
-// Sorts `rows` by colour. `resourceCount` bounds the resource ids; `resourcesOf(row, add)`
-// calls add(id) for each node or dynamic body the row writes.
-template <class Row, class ResourcesOf>
-ColourRanges colourRows(std::vector<Row>& rows, size_t resourceCount, ResourcesOf resourcesOf,
-                        ColouringScratch<Row>& scratch) {
+// The colouring as an index list: `order` gets the indices of the rows for which `included(row)`
+// holds, grouped by colour, each colour in the rows' order (a counting sort); the rows stay where
+// they are. `resourceCount` bounds the resource ids; `resourcesOf(row, add)` calls add(id) for
+// each node or dynamic body the row writes.
+template <class Row, class Included, class ResourcesOf>
+ColourRanges colourIndices(const std::vector<Row>& rows, Included included, size_t resourceCount,
+                           ResourcesOf resourcesOf, std::vector<int32_t>& order, ColouringScratch& scratch) {
   static_assert(kColourCount <= 32, "a colour is a bit of a uint32_t");
+  constexpr uint8_t kLeftOut = kColourCount + 1;
   scratch.usedColours.assign(resourceCount, 0u);
   scratch.colour.resize(rows.size());
   std::array<int32_t, kColourCount + 1> count{};
   for (size_t r = 0; r < rows.size(); ++r) {
+    if (!included(rows[r])) {
+      scratch.colour[r] = kLeftOut;
+      continue;
+    }
     const int colour = takeColour(rows[r], resourcesOf, scratch.usedColours);
     scratch.colour[r] = static_cast<uint8_t>(colour);
     ++count[static_cast<size_t>(colour)];
@@ -81,31 +86,22 @@ ColourRanges colourRows(std::vector<Row>& rows, size_t resourceCount, ResourcesO
     ranges.start[static_cast<size_t>(c) + 1] = ranges.start[static_cast<size_t>(c)] + count[static_cast<size_t>(c)];
   std::array<int32_t, kColourCount + 1> next{};
   for (int c = 0; c <= kColourCount; ++c) next[static_cast<size_t>(c)] = ranges.start[static_cast<size_t>(c)];
-  scratch.sorted.resize(rows.size());
-  for (size_t r = 0; r < rows.size(); ++r) scratch.sorted[static_cast<size_t>(next[scratch.colour[r]]++)] = rows[r];
-  rows.swap(scratch.sorted);
+  order.resize(static_cast<size_t>(ranges.end(kColourCount)));
+  for (size_t r = 0; r < rows.size(); ++r)
+    if (scratch.colour[r] != kLeftOut) order[static_cast<size_t>(next[scratch.colour[r]]++)] = static_cast<int32_t>(r);
   return ranges;
 }
 
-// The same colouring as an index list: `order` gets the indices of the rows for which
-// `included(row)` holds, grouped by colour, each colour in the rows' order. The rows stay where
-// they are.
-template <class Row, class Included, class ResourcesOf>
-ColourRanges colourIndices(const std::vector<Row>& rows, Included included, size_t resourceCount,
-                           ResourcesOf resourcesOf, std::vector<int32_t>& order, std::vector<uint32_t>& usedColours) {
-  usedColours.assign(resourceCount, 0u);
-  order.clear();
-  std::array<std::vector<int32_t>, kColourCount + 1> byColour;
-  for (size_t r = 0; r < rows.size(); ++r) {
-    if (!included(rows[r])) continue;
-    byColour[static_cast<size_t>(takeColour(rows[r], resourcesOf, usedColours))].push_back(static_cast<int32_t>(r));
-  }
-  ColourRanges ranges;
-  for (int c = 0; c <= kColourCount; ++c) {
-    const std::vector<int32_t>& rowsOfColour = byColour[static_cast<size_t>(c)];
-    order.insert(order.end(), rowsOfColour.begin(), rowsOfColour.end());
-    ranges.start[static_cast<size_t>(c) + 1] = static_cast<int32_t>(order.size());
-  }
+// Sorts `rows` themselves by colour (colourIndices over all of them, then the rows put in that
+// order; `sorted` and `order` are buffers).
+template <class Row, class ResourcesOf>
+ColourRanges colourRows(std::vector<Row>& rows, size_t resourceCount, ResourcesOf resourcesOf,
+                        ColouringScratch& scratch, std::vector<int32_t>& order, std::vector<Row>& sorted) {
+  const ColourRanges ranges =
+      colourIndices(rows, [](const Row&) { return true; }, resourceCount, resourcesOf, order, scratch);
+  sorted.resize(rows.size());
+  for (size_t i = 0; i < rows.size(); ++i) sorted[i] = rows[static_cast<size_t>(order[i])];
+  rows.swap(sorted);
   return ranges;
 }
 
