@@ -81,7 +81,8 @@ Json rowsJson(const RunLog& log, const StepReport& last) {
 
 Json convergenceJson(const RunLog& log, const StepReport& last) {
   return Json{{"rms_delta_lambda_last_step", last.rmsDeltaLambda},
-              {"rms_delta_lambda_mean", log.meanRmsDeltaLambda()}};
+              {"rms_delta_lambda_mean", log.meanRmsDeltaLambda()},
+              {"block_factorisations", log.blockFactorisations()}};
 }
 
 Json impactZonesJson(const RunLog& log, const StepReport& last) {

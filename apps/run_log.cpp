@@ -53,6 +53,7 @@ void RunLog::add(const StepReport& report, double wallMs, double time) {
   m_maxImpactZones = std::max(m_maxImpactZones, report.impactZones);
   m_maxImpactZoneNodes = std::max(m_maxImpactZoneNodes, report.impactZoneNodes);
   if (report.impactZones > 0) ++m_stepsWithImpactZones;
+  m_blockFactorisations += report.blockFactorisations;
   if (report.rmsDeltaLambda.size() > m_rmsSums.size()) {
     m_rmsSums.resize(report.rmsDeltaLambda.size(), 0.0);
     m_rmsCounts.resize(report.rmsDeltaLambda.size(), 0);

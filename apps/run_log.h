@@ -55,6 +55,7 @@ class RunLog {
   int maxImpactZones() const { return m_maxImpactZones; }
   int maxImpactZoneNodes() const { return m_maxImpactZoneNodes; }
   int64_t stepsWithImpactZones() const { return m_stepsWithImpactZones; }
+  int64_t blockFactorisations() const { return m_blockFactorisations; }  // over the run
   // Every violated row reported over the run (the first kViolationsKept of them are kept).
   int64_t violationCount() const { return m_violationCount; }
   const std::vector<LoggedViolation>& violations() const { return m_violations; }
@@ -84,6 +85,7 @@ class RunLog {
   int m_maxImpactZones = 0;
   int m_maxImpactZoneNodes = 0;
   int64_t m_stepsWithImpactZones = 0;
+  int64_t m_blockFactorisations = 0;
   int64_t m_violationCount = 0;
   std::vector<LoggedViolation> m_violations;
   std::vector<double> m_rmsSums;

@@ -73,6 +73,8 @@ void printReport(const StepReport& report, const RunLog& log) {
   std::printf("  %-20s %8d\n", "total", report.totalRows());
   std::printf("Bullet: %d contact manifolds, %d joints\n", report.bulletContactManifolds, report.bulletJoints);
   std::printf("Impact zones, last step: %d, holding %d nodes\n", report.impactZones, report.impactZoneNodes);
+  std::printf("Direct-block factorisations: %lld in %lld steps\n", static_cast<long long>(log.blockFactorisations()),
+              static_cast<long long>(log.steps()));
   std::printf("RMS of delta-lambda per iteration, last step (N s):");
   for (double rms : report.rmsDeltaLambda) std::printf(" %.3g", rms);
   std::printf("\n");

@@ -26,8 +26,11 @@ void World::Impl::pushOutOfContacts() {
 
 void World::Impl::projectDirectBlocks() {
   unprojected.assign(deformables.size(), 0);
+  report.blockFactorisations = 0;
   for (DirectBlock& block : directBlocks) {
-    if (block.projectPositions(rows, nodes)) continue;
+    const bool projected = block.projectPositions(rows, nodes);
+    report.blockFactorisations += block.takeFactorisationCount();  // the step's last use of the block
+    if (projected) continue;
     for (const DirectBlock::NodeRange& range : block.ranges())
       unprojected[deformableIndexOfNode(range.first)] = 1;
   }

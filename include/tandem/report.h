@@ -39,6 +39,9 @@ struct StepReport {
   // Groups of nodes moved rigidly at the step's end because their surfaces would have crossed.
   int impactZones = 0;
   int impactZoneNodes = 0;
+  // Sparse factorisations of the direct blocks' KKT matrices this step (a block whose pattern is
+  // unchanged keeps last step's while it still solves this step's matrix to 1e-4).
+  int blockFactorisations = 0;
   // The worst violated row of each kind per deformable, at the step's end (empty when all hold).
   std::vector<RowViolation> violations;
   double totalSeconds = 0.0;

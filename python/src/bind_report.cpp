@@ -72,6 +72,8 @@ void bindReport(py::module_& module) {
       .def_readonly("impact_zones", &StepReport::impactZones,
                     "Groups of nodes moved rigidly at the step's end because surfaces would have crossed.")
       .def_readonly("impact_zone_nodes", &StepReport::impactZoneNodes, "Nodes in them.")
+      .def_readonly("block_factorisations", &StepReport::blockFactorisations,
+                    "Sparse factorisations of the direct blocks this step (0 when last step's were kept).")
       .def_readonly("violations", &StepReport::violations, "RowViolation list, empty when every row holds.")
       .def_readonly("total_seconds", &StepReport::totalSeconds, "Wall-clock seconds the step took.")
       .def_property_readonly("total_rows", &StepReport::totalRows, "Scalar rows of every type.")
@@ -86,6 +88,7 @@ void bindReport(py::module_& module) {
             d["bullet_joints"] = r.bulletJoints;
             d["impact_zones"] = r.impactZones;
             d["impact_zone_nodes"] = r.impactZoneNodes;
+            d["block_factorisations"] = r.blockFactorisations;
             py::list violations;
             for (const RowViolation& v : r.violations) violations.append(violationDict(v));
             d["violations"] = violations;

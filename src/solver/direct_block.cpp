@@ -19,6 +19,9 @@ constexpr double kMaxStiffnessToMass = 100;
 // Contacts whose friction a block solves in its own metric (two KKT right-hand sides each per
 // factorisation, solved together).
 constexpr size_t kMaxFrictionContacts = 32;
+// A kept factorisation is used while one refinement step leaves at most this fraction of the
+// right-hand side (in velocities: a degree of freedom's residual impulse over its H_ii) unsolved.
+constexpr double kKeptFactorTolerance = 1e-4;
 
 bool isUnbounded(double maxForce) { return std::isinf(maxForce); }
 
@@ -138,6 +141,7 @@ void DirectBlock::claimRows(ConstraintRows& rows) const {
 void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
                           std::span<const RigidSolverState> rigid, double timeStep,
                           std::span<const NodePairStiffness> elastic) {
+  const bool factorKept = m_factorOk && m_factorReusable;
   m_factorOk = false;
   if (m_rows.empty()) return;  // nothing to solve this step
   // Degrees of freedom: free nodes, then dynamic awake bodies.
@@ -311,26 +315,64 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
   for (int32_t n = 0; n < m_nodeCount; ++n)
     if (m_nodeDof[n] >= 0) m_inverseMass.segment<3>(m_nodeDof[n]).setConstant(nodes.inverseMass[globalNode(n)]);
 
-  factorise();
+  m_factorOk = factorKept;
+  factorise(true, true);
 }
 
-void DirectBlock::factorise() {
+void DirectBlock::factorise(bool mayKeep, bool reusable) {
   const Eigen::Index size = m_dofCount + scalarRowCount();
   const bool placed = m_kktAssembly.assemble(m_entries, size, size, m_kkt);
   m_releasedRows.clear();  // in the matrix now
   m_frictionStale = true;
+  m_residualChecked = false;
   // The ordering and symbolic factorisation are redone only when the sparsity pattern changes
   // (pinned nodes, movable bodies, the contacts in the block).
   const std::span<const int> outer(m_kkt.outerIndexPtr(), static_cast<size_t>(m_kkt.outerSize()) + 1);
   const std::span<const int> inner(m_kkt.innerIndexPtr(), static_cast<size_t>(m_kkt.nonZeros()));
-  if (placed && (!std::ranges::equal(outer, m_analysedOuter) || !std::ranges::equal(inner, m_analysedInner))) {
+  const bool newPattern = placed && (!std::ranges::equal(outer, m_analysedOuter) || !std::ranges::equal(inner, m_analysedInner));
+  if (newPattern) {
     m_factor->analyzePattern(m_kkt);
     m_analysedOuter.assign(outer.begin(), outer.end());
     m_analysedInner.assign(inner.begin(), inner.end());
   }
+  // Residuals in velocities: a degree of freedom's over its diagonal (the first entry of its
+  // column in the lower triangle), a row's as it is.
+  m_residualScale.setOnes(size);
+  for (Eigen::Index j = 0; j < m_dofCount; ++j)
+    if (outer[j] < outer[j + 1] && inner[outer[j]] == j && m_kkt.valuePtr()[outer[j]] > 0.0)
+      m_residualScale[j] = 1.0 / m_kkt.valuePtr()[outer[j]];
+  if (mayKeep && m_factorOk && !newPattern) {
+    m_factorFresh = false;
+    return;
+  }
   m_factor->factorize(m_kkt);
   m_factorOk = m_factor->info() == Eigen::Success;
+  m_factorFresh = true;
+  m_factorReusable = reusable;
+  ++m_factorisations;
 }
+
+void DirectBlock::residual(const Eigen::VectorXd& rhs, const Eigen::VectorXd& z, Eigen::VectorXd& out) const {
+  out.noalias() = m_kkt.selfadjointView<Eigen::Lower>() * z;
+  out = rhs - out;
+  for (int32_t r = 0; r < scalarRowCount(); ++r) {
+    const Eigen::Index k = m_dofCount + r;
+    if (m_released[r]) out[k] = 0.0;
+    else if (m_active[r]) out[k] -= m_compliance[r] * z[k];
+  }
+}
+
+void DirectBlock::residualColumns(const ColumnBlock& b, const ColumnBlock& x, ColumnBlock& out) const {
+  out.noalias() = m_kkt.selfadjointView<Eigen::Lower>() * x;
+  out = b - out;
+  for (int32_t r = 0; r < scalarRowCount(); ++r) {
+    const Eigen::Index k = m_dofCount + r;
+    if (m_released[r]) out.row(k).setZero();
+    else if (m_active[r]) out.row(k) -= m_compliance[r] * x.row(k);
+  }
+}
+
+double DirectBlock::scaledNorm(const Eigen::VectorXd& v) const { return v.cwiseProduct(m_residualScale).cwiseAbs().maxCoeff(); }
 
 // A released row's equation is dropped. In the matrix, it keeps its place in the pattern with
 // zero entries and a unit diagonal, for the next factorisation. Until then, the system solved is
@@ -350,7 +392,7 @@ void DirectBlock::release(const std::vector<int32_t>& released) {
   }
   const auto count = static_cast<Eigen::Index>(m_releasedRows.size() + released.size());
   if (count > kLowRankReleases) {
-    factorise();
+    factorise(false, false);
     return;
   }
   const Eigen::Index size = m_dofCount + scalarRowCount();
@@ -441,6 +483,11 @@ bool DirectBlock::projectPositions(const ConstraintRows& rows, NodeArrays& nodes
     }
   }
   solveKkt(m_rhs, m_solution);
+  if (!m_factorFresh) {  // a kept factorisation: one refinement step, as in solve()
+    residual(m_rhs, m_solution, m_residual);
+    solveKkt(m_residual, m_refinement);
+    m_solution += m_refinement;
+  }
   // Near a singular configuration (a taut flat sheet pinned at its corners) the linearised
   // rows are nearly redundant and a small error asks for a large step: no node moves further
   // than twice the largest error it is correcting.
@@ -500,14 +547,33 @@ void DirectBlock::solve(ConstraintRows& rows, SolverContext& ctx, SweepStats& st
     m_rhs.head(m_dofCount) = m_jacobianT * prescribed;
     for (int32_t r = 0; r < rowCount; ++r)
       m_rhs[m_dofCount + r] = m_active[r] && !m_released[r] ? -(rowVelocity(rows, m_rows[r], ctx) + m_bias[r]) : 0.0;
-    solveKkt(m_rhs, m_solution);
-    // One step of iterative refinement: the first solve leaves J(v + Δv) + b = E y, a residual
-    // of the compliance alone; solving for it again removes all but O(ε²) of it.
-    m_rhs.head(m_dofCount).setZero();
-    for (int32_t r = 0; r < rowCount; ++r)
-      m_rhs[m_dofCount + r] = m_active[r] && !m_released[r] ? -m_compliance[r] * m_solution[m_dofCount + r] : 0.0;
-    solveKkt(m_rhs, m_refinement);
-    m_solution += m_refinement;
+    // One step of iterative refinement: with this step's factorisation the first solve leaves
+    // J(v + Δv) + b = E y, a residual of the compliance alone, and solving for it again removes
+    // all but O(ε²) of it; with a kept one, the change of the matrix since as well (the header).
+    auto refinedSolve = [&] {
+      solveKkt(m_rhs, m_solution);
+      if (m_factorFresh) {
+        m_residual.setZero(m_rhs.size());
+        for (int32_t r = 0; r < rowCount; ++r)
+          if (m_active[r] && !m_released[r]) m_residual[m_dofCount + r] = -m_compliance[r] * m_solution[m_dofCount + r];
+      } else {
+        residual(m_rhs, m_solution, m_residual);
+      }
+      solveKkt(m_residual, m_refinement);
+      m_solution += m_refinement;
+    };
+    refinedSolve();
+    if (!m_factorFresh && !m_residualChecked) {
+      m_residualChecked = true;
+      residual(m_rhs, m_solution, m_residual);
+      if (scaledNorm(m_residual) > kKeptFactorTolerance * scaledNorm(m_rhs)) {
+        // Too far from this step's matrix: factorised afresh (kept next step only if no contact
+        // has been let go yet) and solved again.
+        factorise(false, std::none_of(m_released.begin(), m_released.end(), [](bool released) { return released; }));
+        if (!m_factorOk) return;
+        refinedSolve();
+      }
+    }
 
     std::vector<int32_t> released;
     for (size_t r = m_persistentRows; r < m_rows.size(); ++r) {
@@ -643,7 +709,13 @@ void DirectBlock::computeFrictionResponses(const ConstraintRows& rows) {
     writeImpulseOnDofs(row, row.tangent1, m_columns, response.column);
     writeImpulseOnDofs(row, row.tangent2, m_columns, response.column + 1);
   }
+  if (!m_factorFresh) m_columnsRhs = m_columns;
   solveKktColumns(m_columns, true);
+  if (!m_factorFresh) {  // a kept factorisation: one refinement step, as in solve()
+    residualColumns(m_columnsRhs, m_columns, m_columnsResidual);
+    solveKktColumns(m_columnsResidual, true);
+    m_columns += m_columnsResidual;
+  }
   // The solution's top is the velocity change Δv of the block's degrees of freedom (in a body's
   // free directions), its bottom −Δλ of the rows (a released row's, none).
   m_frictionImpulse = -m_columns.bottomRows(rowCount);

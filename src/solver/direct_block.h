@@ -55,10 +55,19 @@
 // friction pressed nodes 2.6 mm past their thickness into the shape (Shapes/ClothDrop/hull).
 //
 // The KKT matrix is symmetric quasi-definite, so a sparse LDLᵀ without pivoting (AMD ordering)
-// factorises it once per step; each sweep is one pair of triangular solves (plus a small dense
-// solve for the contacts let go, which drops their equations without refactorising, up to 32
-// of them). Rows with bounds (finite max force, one-sided modes) stay in the PGS sweep, which
-// runs before the block in every iteration.
+// factorises it; each sweep is one pair of triangular solves (plus a small dense solve for the
+// contacts let go, which drops their equations without refactorising, up to 32 of them) and
+// one step of iterative refinement against this step's matrix A₀ (z += F⁻¹ (rhs − A₀ z)). Rows
+// with bounds (finite max force, one-sided modes) stay in the PGS sweep, which runs before the
+// block in every iteration.
+//
+// Factorisations kept. A block whose rows and contacts are the same as last step's (its pattern
+// unchanged) keeps last step's factorisation F instead of computing a new one: a jelly at rest
+// under a bar changes its matrix by a few parts in a million per step, and the factorisation was
+// most of its step's cost. The refinement step above makes the solve exact for A₀ all the same,
+// to the square of F's relative error; the first solve of each step measures what is left, and
+// past a part in ten thousand of the right-hand side the block is factorised afresh and solved again.
+// Momentum is untouched either way: velocities come from the impulses (below).
 #pragma once
 
 #include <tandem/report.h>
@@ -72,6 +81,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <utility>
 #include <vector>
 
 namespace tandem {
@@ -128,6 +138,8 @@ class DirectBlock {
 
   // One exact solve of the block against the current velocities.
   void solve(ConstraintRows& rows, SolverContext& ctx, SweepStats& stats);
+  // Numeric factorisations since the last call (for the step report), and resets the count.
+  int takeFactorisationCount() { return std::exchange(m_factorisations, 0); }
   // Then one pass over the friction of its contacts, in its metric (above), bounded by the
   // normal impulses that solve gave.
   void solveFriction(ConstraintRows& rows, SolverContext& ctx, FrictionModel model, SweepStats& stats);
@@ -153,12 +165,21 @@ class DirectBlock {
   // Eigen's factorisations cannot move; the block can.
   std::unique_ptr<Eigen::SimplicialLDLT<SparseMatrix>> m_factor = std::make_unique<Eigen::SimplicialLDLT<SparseMatrix>>();
   bool m_factorOk = false;
+  // The factorisation is of this step's values (else of an earlier step's, with this pattern).
+  bool m_factorFresh = false;
+  // It was made by prepare(), with every row in: an earlier step's may be kept (a factorisation
+  // after releases has their rows dropped, far from next step's matrix).
+  bool m_factorReusable = false;
+  int m_factorisations = 0;
+  bool m_residualChecked = false;  // this step's first solve measured a kept factorisation's error
   std::vector<int> m_analysedOuter, m_analysedInner;  // the pattern the ordering was computed for
-  Eigen::VectorXd m_rhs, m_solution, m_refinement;
+  Eigen::VectorXd m_rhs, m_solution, m_refinement, m_residual;
+  Eigen::VectorXd m_residualScale;  // per KKT row: 1 / H_ii for a degree of freedom, 1 for a row
   mutable Eigen::VectorXd m_atReleased;  // scratch of solveKkt
   mutable ColumnBlock m_permuted;        // scratch of solveKktColumns
   mutable Eigen::VectorXd m_column;      // scratch of solveKktColumns
   ColumnBlock m_columns;                 // right-hand sides of the friction responses and released rows
+  ColumnBlock m_columnsRhs, m_columnsResidual;  // scratch of a kept factorisation's refinement
   Eigen::VectorXd m_velocityChange;    // scratch: of the block's degrees of freedom
   Eigen::VectorXd m_rowImpulseChange;  // scratch: Δλ of the block's rows
   SparseMatrix m_jacobianT;         // Jᵀ: dofs × rows
@@ -215,7 +236,14 @@ class DirectBlock {
   int32_t localNode(int32_t node) const;  // index among the block's nodes, or −1
   int32_t globalNode(int32_t local) const;
   const NodeRange& rangeOf(int32_t node) const;  // of one of the block's nodes
-  void factorise();
+  // `mayKeep`: an earlier factorisation of the same pattern is kept instead (see the header);
+  // `reusable`: this one may be kept in later steps (every row of the step in it).
+  void factorise(bool mayKeep, bool reusable);
+  // rhs − A₀ z, A₀ this step's KKT matrix without the active rows' compliance, released rows' 0.
+  void residual(const Eigen::VectorXd& rhs, const Eigen::VectorXd& z, Eigen::VectorXd& out) const;
+  // The same for each column of `x` against `b`, into `out`.
+  void residualColumns(const ColumnBlock& b, const ColumnBlock& x, ColumnBlock& out) const;
+  double scaledNorm(const Eigen::VectorXd& v) const;  // max |v_i| m_residualScale_i
   void release(const std::vector<int32_t>& rows);
   // z = A⁻¹ rhs, with the released rows' equations dropped; z must not alias rhs.
   void solveKkt(const Eigen::VectorXd& rhs, Eigen::VectorXd& z) const;
