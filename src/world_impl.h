@@ -125,7 +125,9 @@ struct World::Impl final : bullet::SolverHooks {
     std::vector<char> touched;           // per deformable × rigid body
     std::vector<NodeOnShape> touching;   // nodes kept out of those shapes
     std::vector<FaceOnCore> faces;       // faces kept off round bodies' cores
+    std::vector<char> heldByBody;        // per node: anchored to a dynamic body
     std::vector<Vec3> before, pushed;    // per node
+    std::vector<Vec3> reaction;          // per node held by a body: −Σ m Δx of its edges' other ends
   } strainScratch;
 
   StepReport report;
@@ -233,6 +235,7 @@ struct World::Impl final : bullet::SolverHooks {
 
   // Inextensible edges no block projected brought back within 1 % by position, nodes kept out
   // of the shapes they touched (solver/strain_limiting.h).
+  void giveReactionToBody(AnchorRow& row, const Vec3& impulse, double h);
   void limitStrainOfUnprojectedRows();
 
   // No surface may have passed through another or itself on its way from the step's start

@@ -48,14 +48,18 @@ void World::Impl::limitStrainOfUnprojectedRows() {
     scratch.limitedBody[d] = 1;
   }
   if (scratch.rows.empty()) return;
-  // Nodes held to the world (fixed points, anchors to static or kinematic bodies) stay where
-  // their rows put them; the rest move by their inverse masses, so momentum is kept (a node
-  // anchored to a dynamic body that moves is pulled back by its anchor's bias next step).
+  // Nodes held by fixed points and anchors stay where their rows put them; the rest move by
+  // their inverse masses. What a node anchored to a dynamic body would have taken goes to the
+  // body (strain_limiting.h), so momentum is kept.
   scratch.weight = nodes.inverseMass;
+  scratch.heldByBody.assign(nodes.size(), 0);
   for (const FixedPointRow& row : rows.fixedPoints) scratch.weight[row.node] = 0.0;
   for (const AnchorRow& row : rows.anchors)
     for (int k = 0; k < 4; ++k)
-      if (row.weight[k] != 0.0 && !bullet.isDynamic(row.body)) scratch.weight[row.node[k]] = 0.0;
+      if (row.weight[k] != 0.0) {
+        if (bullet.isDynamic(row.body) && scratch.weight[row.node[k]] > 0.0) scratch.heldByBody[row.node[k]] = 1;
+        scratch.weight[row.node[k]] = 0.0;
+      }
   // Every node of a body with such rows near a shape the body touched this step is kept out of it.
   const auto bodyCount = static_cast<size_t>(bullet.rigidBodyCount());
   scratch.shapes.assign(bodyCount, CollisionRigid{});
@@ -96,12 +100,53 @@ void World::Impl::limitStrainOfUnprojectedRows() {
   }
   scratch.edges.clear();
   for (int32_t r : scratch.rows)
-    if (LimitedEdge edge; makeLimitedEdge(rows.inextensibility[r], scratch.weight, edge)) scratch.edges.push_back(edge);
+    if (LimitedEdge edge; makeLimitedEdge(rows.inextensibility[r], scratch.weight, edge)) {
+      for (int k = 0; k < 2; ++k)
+        if (scratch.heldByBody[edge.node[k]]) {
+          edge.heldByBody = edge.node[k];
+          edge.movingMass = 1.0 / scratch.weight[edge.node[1 - k]];
+        }
+      scratch.edges.push_back(edge);
+    }
   scratch.before = nodes.position;
   scratch.pushed.assign(nodes.size(), Vec3::Zero());
-  limitStrain(scratch.edges, scratch.touching, scratch.faces, scratch.weight, nodes.position, scratch.pushed);
+  scratch.reaction.assign(nodes.size(), Vec3::Zero());
+  limitStrain(scratch.edges, scratch.touching, scratch.faces, scratch.weight, nodes.position, scratch.pushed,
+              scratch.reaction);
   for (size_t n = 0; n < nodes.size(); ++n)
     nodes.velocity[n] += (nodes.position[n] - scratch.before[n] - scratch.pushed[n]) / timeStep;
+  for (AnchorRow& row : rows.anchors)
+    for (int k = 0; k < 4; ++k)
+      if (row.weight[k] != 0.0 && scratch.heldByBody[row.node[k]] && !scratch.reaction[row.node[k]].isZero()) {
+        giveReactionToBody(row, scratch.reaction[row.node[k]] / timeStep, timeStep);
+        scratch.reaction[row.node[k]].setZero();  // given once, to the first anchor of the node
+      }
+}
+
+// An anchored node's reaction, as an impulse J at the anchor, to its body: the velocity change
+// of J (in the body's free directions) and the pose change of that velocity over the step, as
+// the other nodes' passes moved them (so the centre of mass of rope and body moves as it did
+// before the passes). A sleeping body is woken and takes the impulse alone.
+void World::Impl::giveReactionToBody(AnchorRow& row, const Vec3& impulse, double h) {
+  const Vec3 offset = bullet.orientation(row.body) * row.localPoint;
+  RigidSolverState& body = rigid[row.body];
+  body.impulse += impulse;
+  body.angularImpulse += offset.cross(impulse);
+  row.stepImpulse -= impulse;
+  if (body.inverseMass == 0.0) {
+    bullet.applyImpulse(row.body, impulse, offset);
+    return;
+  }
+  RigidSolverState response = body;
+  response.linearVelocity.setZero();
+  response.angularVelocity.setZero();
+  response.applyGeneralisedImpulse(impulse, offset.cross(impulse));
+  bullet.setLinearVelocity(row.body, bullet.linearVelocity(row.body) + response.linearVelocity);
+  bullet.setAngularVelocity(row.body, bullet.angularVelocity(row.body) + response.angularVelocity);
+  const Vec3 turn = h * response.angularVelocity;
+  const Quat rotation = turn.norm() > 0.0 ? Quat(Eigen::AngleAxisd(turn.norm(), turn.normalized())) : Quat::Identity();
+  bullet.setPose(row.body, bullet.position(row.body) + h * response.linearVelocity,
+                 rotation * bullet.orientation(row.body));
 }
 
 void World::Impl::separateCrossingSurfaces(double h) {
