@@ -53,28 +53,36 @@ std::vector<Vec3> positionBasedGoals(const PositionBasedBody& body, std::span<co
   std::vector<Vec3> x(predicted.begin(), predicted.end());
   const double k = 1.0 - std::pow(1.0 - body.stiffness, 1.0 / body.iterations);
   const auto& rest = body.restPositions;
+  // Rest lengths and six rest volumes, once for all the iterations.
+  std::vector<double> restLength(body.edges.size()), restVolume(body.tetrahedra.size());
+  for (size_t i = 0; i < body.edges.size(); ++i) restLength[i] = (rest[body.edges[i][1]] - rest[body.edges[i][0]]).norm();
+  for (size_t i = 0; i < body.tetrahedra.size(); ++i) {
+    const auto& t = body.tetrahedra[i];
+    restVolume[i] = (rest[t[1]] - rest[t[0]]).dot((rest[t[2]] - rest[t[0]]).cross(rest[t[3]] - rest[t[0]]));
+  }
   for (int iteration = 0; iteration < body.iterations; ++iteration) {
-    for (const auto& e : body.edges) {
+    for (size_t i = 0; i < body.edges.size(); ++i) {
+      const auto& e = body.edges[i];
       const double wi = inverseMass[e[0]], wj = inverseMass[e[1]];
       if (wi + wj == 0.0) continue;
       const Vec3 d = x[e[1]] - x[e[0]];
       const double length = d.norm();
       if (length < 1e-12) continue;
-      const Vec3 correction = k * (length - (rest[e[1]] - rest[e[0]]).norm()) / (wi + wj) * (d / length);
+      const Vec3 correction = k * (length - restLength[i]) / (wi + wj) * (d / length);
       x[e[0]] += wi * correction;
       x[e[1]] -= wj * correction;
     }
-    for (const auto& t : body.tetrahedra) {
+    for (size_t i = 0; i < body.tetrahedra.size(); ++i) {
       // C = 6V − 6V⁰ with 6V = (x₁ − x₀)·((x₂ − x₀) × (x₃ − x₀)).
+      const auto& t = body.tetrahedra[i];
       const Vec3 e1 = x[t[1]] - x[t[0]], e2 = x[t[2]] - x[t[0]], e3 = x[t[3]] - x[t[0]];
       const double volume = e1.dot(e2.cross(e3));
-      const double restVolume = (rest[t[1]] - rest[t[0]]).dot((rest[t[2]] - rest[t[0]]).cross(rest[t[3]] - rest[t[0]]));
       std::array<Vec3, 4> gradient{Vec3::Zero(), e2.cross(e3), e3.cross(e1), e1.cross(e2)};
       gradient[0] = -(gradient[1] + gradient[2] + gradient[3]);
       double denominator = 0.0;
       for (int n = 0; n < 4; ++n) denominator += inverseMass[t[n]] * gradient[n].squaredNorm();
       if (denominator < 1e-24) continue;
-      const double scale = -k * (volume - restVolume) / denominator;
+      const double scale = -k * (volume - restVolume[i]) / denominator;
       for (int n = 0; n < 4; ++n) x[t[n]] += scale * inverseMass[t[n]] * gradient[n];
     }
     for (const SupportPlane& plane : body.supports) {  // hard, like the contacts they stand for
