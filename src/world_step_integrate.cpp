@@ -2,6 +2,8 @@
 // (src/world.cpp runs the stages in order; src/world_impl.h holds the state.)
 #include "world_impl.h"
 
+#include <cmath>
+
 namespace tandem {
 
 void World::Impl::integrateNodes(double h) {
@@ -50,16 +52,20 @@ void World::Impl::limitStrainOfUnprojectedRows() {
   if (scratch.rows.empty()) return;
   // Nodes held by fixed points and anchors stay where their rows put them; the rest move by
   // their inverse masses. What a node anchored to a dynamic body would have taken goes to the
-  // body (strain_limiting.h), so momentum is kept.
+  // body (strain_limiting.h), so momentum is kept; a node whose anchor to a dynamic body has a
+  // force bound moves like any other (held, it would pull the body past the bound).
   scratch.weight = nodes.inverseMass;
   scratch.heldByBody.assign(nodes.size(), 0);
   for (const FixedPointRow& row : rows.fixedPoints) scratch.weight[row.node] = 0.0;
-  for (const AnchorRow& row : rows.anchors)
+  for (const AnchorRow& row : rows.anchors) {
+    const bool dynamic = bullet.isDynamic(row.body);
+    if (dynamic && !std::isinf(row.maxForce)) continue;  // its pull is bounded: the node may leave it
     for (int k = 0; k < 4; ++k)
       if (row.weight[k] != 0.0) {
-        if (bullet.isDynamic(row.body) && scratch.weight[row.node[k]] > 0.0) scratch.heldByBody[row.node[k]] = 1;
+        if (dynamic && scratch.weight[row.node[k]] > 0.0) scratch.heldByBody[row.node[k]] = 1;
         scratch.weight[row.node[k]] = 0.0;
       }
+  }
   // Every node of a body with such rows near a shape the body touched this step is kept out of it.
   const auto bodyCount = static_cast<size_t>(bullet.rigidBodyCount());
   scratch.shapes.assign(bodyCount, CollisionRigid{});

@@ -172,6 +172,33 @@ TEST(HangingRope, ATornRopeIsReportedNamingItsRows) {
   }
 }
 
+// An anchor's force bound holds for everything the rope puts on the body, the position passes
+// included: they hold only unbounded anchors' nodes (whose reaction the body then takes).
+TEST(HangingRope, ABoundedAnchorNeverPullsHarderThanItsBound) {
+  World world;
+  DeformableDesc rope;
+  rope.name = "rope";
+  rope.mesh = *makeRope({0, 2, 0}, {0, 1, 0}, 11, 0.1);
+  rope.inextensibility.enabled = true;
+  rope.rowSolver = RowSolverKind::Iterative;  // swept, so its edges are limited by position
+  const DeformableId ropeId = *world.addDeformable(rope);
+  RigidBodyDesc box;
+  box.name = "box";
+  box.shape = RigidShape::box({0.1, 0.1, 0.1});
+  box.mass = 10.0;
+  box.position = {0, 0.9, 0};
+  const RigidBodyId boxId = *world.addRigidBody(box);
+  ASSERT_TRUE(world.addFixedPoint(ropeId, 0, {0, 2, 0}).ok());
+  AnchorDesc anchor = AnchorDesc::node(ropeId, 10, boxId);
+  anchor.maxForce = 20.0;
+  ASSERT_TRUE(world.addAnchor(anchor).ok());
+  for (int node = 1; node < 11; ++node) ASSERT_TRUE(world.setNodeVelocity(ropeId, node, {3.0, 0, 0}).ok());
+  for (int step = 0; step < 60; ++step) {
+    ASSERT_TRUE(world.step(kStep).ok());
+    EXPECT_LE(world.deformableImpulseOnRigid(boxId).norm(), 20.0 * kStep * (1 + 1e-9)) << "step " << step;
+  }
+}
+
 // A rope that holds its load reports nothing.
 TEST(HangingRope, ARopeThatHoldsReportsNoViolation) {
   World world;

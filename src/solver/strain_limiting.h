@@ -24,9 +24,10 @@
 //
 // (momentum-preserving: Σ m Δx = 0). Only the sides of each row that have no force bound are
 // limited (a row with maxForce may stretch on purpose). Nodes held by a fixed point or an
-// anchor count as immovable. For a node anchored to a dynamic body the correction the node
-// would have taken goes to the body instead, as an impulse: each projection of an edge with one
-// such node adds −m Δx of the other node to the held node's `reaction`, and the caller gives
+// anchor count as immovable (an anchor to a dynamic body only without a force bound). For a
+// node anchored to a dynamic body the correction the node would have taken goes to the body
+// instead, as an impulse: each projection of an edge with one such node adds −m Δx of the
+// other node to the held node's `reaction`, and the caller gives
 // Σ reaction / h to the body at the anchor (momentum kept, the anchor left closed). Moving the
 // anchored node instead, as before, opened the rope-over-wheel scene's anchors by 2.3 cm when
 // the slack rope snapped taut (t = 1.16 s at K = 4), for the bias to close over many steps.
