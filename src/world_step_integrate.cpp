@@ -56,16 +56,17 @@ void World::Impl::limitStrainOfUnprojectedRows() {
   // force bound moves like any other (held, it would pull the body past the bound).
   scratch.weight = nodes.inverseMass;
   scratch.heldByBody.assign(nodes.size(), 0);
+  auto holdsByBody = [&](const AnchorRow& row) { return bullet.isDynamic(row.body) && std::isinf(row.maxForce); };
   for (const FixedPointRow& row : rows.fixedPoints) scratch.weight[row.node] = 0.0;
-  for (const AnchorRow& row : rows.anchors) {
-    const bool dynamic = bullet.isDynamic(row.body);
-    if (dynamic && !std::isinf(row.maxForce)) continue;  // its pull is bounded: the node may leave it
+  for (const AnchorRow& row : rows.anchors)  // the world's holds first: they take the reaction
     for (int k = 0; k < 4; ++k)
-      if (row.weight[k] != 0.0) {
-        if (dynamic && scratch.weight[row.node[k]] > 0.0) scratch.heldByBody[row.node[k]] = 1;
+      if (row.weight[k] != 0.0 && !bullet.isDynamic(row.body)) scratch.weight[row.node[k]] = 0.0;
+  for (const AnchorRow& row : rows.anchors)
+    for (int k = 0; k < 4; ++k)
+      if (row.weight[k] != 0.0 && holdsByBody(row) && scratch.weight[row.node[k]] > 0.0) {
+        scratch.heldByBody[row.node[k]] = 1;
         scratch.weight[row.node[k]] = 0.0;
       }
-  }
   // Every node of a body with such rows near a shape the body touched this step is kept out of it.
   const auto bodyCount = static_cast<size_t>(bullet.rigidBodyCount());
   scratch.shapes.assign(bodyCount, CollisionRigid{});
@@ -123,7 +124,8 @@ void World::Impl::limitStrainOfUnprojectedRows() {
     nodes.velocity[n] += (nodes.position[n] - scratch.before[n] - scratch.pushed[n]) / timeStep;
   for (AnchorRow& row : rows.anchors)
     for (int k = 0; k < 4; ++k)
-      if (row.weight[k] != 0.0 && scratch.heldByBody[row.node[k]] && !scratch.reaction[row.node[k]].isZero()) {
+      if (row.weight[k] != 0.0 && holdsByBody(row) && scratch.heldByBody[row.node[k]] &&
+          !scratch.reaction[row.node[k]].isZero()) {
         giveReactionToBody(row, scratch.reaction[row.node[k]] / timeStep, timeStep);
         scratch.reaction[row.node[k]].setZero();  // given once, to the first anchor of the node
       }
