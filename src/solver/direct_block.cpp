@@ -335,12 +335,6 @@ void DirectBlock::factorise(bool mayKeep, bool reusable) {
     m_analysedOuter.assign(outer.begin(), outer.end());
     m_analysedInner.assign(inner.begin(), inner.end());
   }
-  // Residuals in velocities: a degree of freedom's over its diagonal (the first entry of its
-  // column in the lower triangle), a row's as it is.
-  m_residualScale.setOnes(size);
-  for (Eigen::Index j = 0; j < m_dofCount; ++j)
-    if (outer[j] < outer[j + 1] && inner[outer[j]] == j && m_kkt.valuePtr()[outer[j]] > 0.0)
-      m_residualScale[j] = 1.0 / m_kkt.valuePtr()[outer[j]];
   if (mayKeep && m_factorOk && !newPattern) {
     m_factorFresh = false;
     return;
@@ -352,27 +346,36 @@ void DirectBlock::factorise(bool mayKeep, bool reusable) {
   ++m_factorisations;
 }
 
-void DirectBlock::residual(const Eigen::VectorXd& rhs, const Eigen::VectorXd& z, Eigen::VectorXd& out) const {
+template <class Block>
+void DirectBlock::residual(const Block& rhs, const Block& z, Block& out) const {
   out.noalias() = m_kkt.selfadjointView<Eigen::Lower>() * z;
   out = rhs - out;
   for (int32_t r = 0; r < scalarRowCount(); ++r) {
     const Eigen::Index k = m_dofCount + r;
-    if (m_released[r]) out[k] = 0.0;
-    else if (m_active[r]) out[k] -= m_compliance[r] * z[k];
-  }
-}
-
-void DirectBlock::residualColumns(const ColumnBlock& b, const ColumnBlock& x, ColumnBlock& out) const {
-  out.noalias() = m_kkt.selfadjointView<Eigen::Lower>() * x;
-  out = b - out;
-  for (int32_t r = 0; r < scalarRowCount(); ++r) {
-    const Eigen::Index k = m_dofCount + r;
     if (m_released[r]) out.row(k).setZero();
-    else if (m_active[r]) out.row(k) -= m_compliance[r] * x.row(k);
+    else if (m_active[r]) out.row(k) -= m_compliance[r] * z.row(k);
   }
 }
 
-double DirectBlock::scaledNorm(const Eigen::VectorXd& v) const { return v.cwiseProduct(m_residualScale).cwiseAbs().maxCoeff(); }
+void DirectBlock::refineWithKeptFactor(const Eigen::VectorXd& rhs, Eigen::VectorXd& z) {
+  residual(rhs, z, m_residual);
+  solveKkt(m_residual, m_refinement);
+  z += m_refinement;
+}
+
+// Residuals in velocities: a degree of freedom's over its diagonal H_ii (the first entry of its
+// column in the lower triangle), a row's as it is.
+double DirectBlock::scaledNorm(const Eigen::VectorXd& v) const {
+  const int* outer = m_kkt.outerIndexPtr();
+  const int* inner = m_kkt.innerIndexPtr();
+  const double* value = m_kkt.valuePtr();
+  double largest = 0.0;
+  for (Eigen::Index j = 0; j < v.size(); ++j) {
+    const bool scaled = j < m_dofCount && outer[j] < outer[j + 1] && inner[outer[j]] == j && value[outer[j]] > 0.0;
+    largest = std::max(largest, std::abs(scaled ? v[j] * (1.0 / value[outer[j]]) : v[j]));
+  }
+  return largest;
+}
 
 // A released row's equation is dropped. In the matrix, it keeps its place in the pattern with
 // zero entries and a unit diagonal, for the next factorisation. Until then, the system solved is
@@ -483,11 +486,7 @@ bool DirectBlock::projectPositions(const ConstraintRows& rows, NodeArrays& nodes
     }
   }
   solveKkt(m_rhs, m_solution);
-  if (!m_factorFresh) {  // a kept factorisation: one refinement step, as in solve()
-    residual(m_rhs, m_solution, m_residual);
-    solveKkt(m_residual, m_refinement);
-    m_solution += m_refinement;
-  }
+  if (!m_factorFresh) refineWithKeptFactor(m_rhs, m_solution);  // as in solve()
   // Near a singular configuration (a taut flat sheet pinned at its corners) the linearised
   // rows are nearly redundant and a small error asks for a large step: no node moves further
   // than twice the largest error it is correcting.
@@ -552,13 +551,13 @@ void DirectBlock::solve(ConstraintRows& rows, SolverContext& ctx, SweepStats& st
     // all but O(ε²) of it; with a kept one, the change of the matrix since as well (the header).
     auto refinedSolve = [&] {
       solveKkt(m_rhs, m_solution);
-      if (m_factorFresh) {
-        m_residual.setZero(m_rhs.size());
-        for (int32_t r = 0; r < rowCount; ++r)
-          if (m_active[r] && !m_released[r]) m_residual[m_dofCount + r] = -m_compliance[r] * m_solution[m_dofCount + r];
-      } else {
-        residual(m_rhs, m_solution, m_residual);
+      if (!m_factorFresh) {
+        refineWithKeptFactor(m_rhs, m_solution);
+        return;
       }
+      m_residual.setZero(m_rhs.size());
+      for (int32_t r = 0; r < rowCount; ++r)
+        if (m_active[r] && !m_released[r]) m_residual[m_dofCount + r] = -m_compliance[r] * m_solution[m_dofCount + r];
       solveKkt(m_residual, m_refinement);
       m_solution += m_refinement;
     };
@@ -712,7 +711,7 @@ void DirectBlock::computeFrictionResponses(const ConstraintRows& rows) {
   if (!m_factorFresh) m_columnsRhs = m_columns;
   solveKktColumns(m_columns, true);
   if (!m_factorFresh) {  // a kept factorisation: one refinement step, as in solve()
-    residualColumns(m_columnsRhs, m_columns, m_columnsResidual);
+    residual(m_columnsRhs, m_columns, m_columnsResidual);
     solveKktColumns(m_columnsResidual, true);
     m_columns += m_columnsResidual;
   }

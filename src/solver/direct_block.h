@@ -176,7 +176,6 @@ class DirectBlock {
   bool m_residualChecked = false;  // this step's first solve measured a kept factorisation's error
   std::vector<int> m_analysedOuter, m_analysedInner;  // the pattern the ordering was computed for
   Eigen::VectorXd m_rhs, m_solution, m_refinement, m_residual;
-  Eigen::VectorXd m_residualScale;  // per KKT row: 1 / H_ii for a degree of freedom, 1 for a row
   mutable Eigen::VectorXd m_atReleased;  // scratch of solveKkt
   mutable ColumnBlock m_permuted;        // scratch of solveKktColumns
   mutable Eigen::VectorXd m_column;      // scratch of solveKktColumns
@@ -241,11 +240,13 @@ class DirectBlock {
   // `mayKeep`: an earlier factorisation of the same pattern is kept instead (see the header);
   // `reusable`: this one may be kept in later steps (every row of the step in it).
   void factorise(bool mayKeep, bool reusable);
-  // rhs − A₀ z, A₀ this step's KKT matrix without the active rows' compliance, released rows' 0.
-  void residual(const Eigen::VectorXd& rhs, const Eigen::VectorXd& z, Eigen::VectorXd& out) const;
-  // The same for each column of `x` against `b`, into `out`.
-  void residualColumns(const ColumnBlock& b, const ColumnBlock& x, ColumnBlock& out) const;
-  double scaledNorm(const Eigen::VectorXd& v) const;  // max |v_i| m_residualScale_i
+  // rhs − A₀ z, A₀ this step's KKT matrix without the active rows' compliance, released rows' 0
+  // (one right-hand side, or each column of a ColumnBlock).
+  template <class Block>
+  void residual(const Block& rhs, const Block& z, Block& out) const;
+  // z += F⁻¹ (rhs − A₀ z): the refinement step a kept factorisation F needs (see the header).
+  void refineWithKeptFactor(const Eigen::VectorXd& rhs, Eigen::VectorXd& z);
+  double scaledNorm(const Eigen::VectorXd& v) const;  // max |v_i|, a degree of freedom's over H_ii
   void release(const std::vector<int32_t>& rows);
   // z = A⁻¹ rhs, with the released rows' equations dropped; z must not alias rhs.
   void solveKkt(const Eigen::VectorXd& rhs, Eigen::VectorXd& z) const;
