@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+
 namespace tandem {
 namespace {
 
@@ -123,19 +125,23 @@ TEST(HangingRope, ReportsStagesRowsAndConvergence) {
 namespace tandem {
 namespace {
 
-// A rope whose rows are too weak for its load is torn on purpose: the step still succeeds, and
-// the report names the violated row (anchor gap or edge stretch) with its deformable and body.
-// `edgeForce` and `anchorForce` bound the rope's edges and its anchor to a 10 kg box (N).
-std::vector<RowViolation> violationsOfWeakRope(double edgeForce, double anchorForce) {
-  World world;
+// A 1 m, 11-node rope pinned at its top, a 10 kg box anchored to its lower end; `edgeForce` and
+// `anchorForce` bound its edges and the anchor (N).
+struct RopeAndBox {
+  DeformableId rope;
+  RigidBodyId box;
+};
+RopeAndBox hangBoxOnRope(World& world, const std::string& ropeName, const std::string& boxName, double edgeForce,
+                         double anchorForce, RowSolverKind rowSolver = RowSolverKind::Auto) {
   DeformableDesc rope;
-  rope.name = "weak rope";
+  rope.name = ropeName;
   rope.mesh = *makeRope({0, 2, 0}, {0, 1, 0}, 11, 0.1);
   rope.inextensibility.enabled = true;
   rope.inextensibility.maxForce = edgeForce;
+  rope.rowSolver = rowSolver;
   const DeformableId ropeId = *world.addDeformable(rope);
   RigidBodyDesc box;
-  box.name = "heavy box";
+  box.name = boxName;
   box.shape = RigidShape::box({0.1, 0.1, 0.1});
   box.mass = 10.0;
   box.position = {0, 0.9, 0};
@@ -144,6 +150,14 @@ std::vector<RowViolation> violationsOfWeakRope(double edgeForce, double anchorFo
   AnchorDesc anchor = AnchorDesc::node(ropeId, 10, boxId);
   anchor.maxForce = anchorForce;
   EXPECT_TRUE(world.addAnchor(anchor).ok());
+  return {ropeId, boxId};
+}
+
+// A rope whose rows are too weak for its load is torn on purpose: the step still succeeds, and
+// the report names the violated row (anchor gap or edge stretch) with its deformable and body.
+std::vector<RowViolation> violationsOfWeakRope(double edgeForce, double anchorForce) {
+  World world;
+  hangBoxOnRope(world, "weak rope", "heavy box", edgeForce, anchorForce);
   std::vector<RowViolation> seen;
   for (int step = 0; step < 60; ++step) {
     EXPECT_TRUE(world.step(kStep).ok());
@@ -176,22 +190,8 @@ TEST(HangingRope, ATornRopeIsReportedNamingItsRows) {
 // included: they hold only unbounded anchors' nodes (whose reaction the body then takes).
 TEST(HangingRope, ABoundedAnchorNeverPullsHarderThanItsBound) {
   World world;
-  DeformableDesc rope;
-  rope.name = "rope";
-  rope.mesh = *makeRope({0, 2, 0}, {0, 1, 0}, 11, 0.1);
-  rope.inextensibility.enabled = true;
-  rope.rowSolver = RowSolverKind::Iterative;  // swept, so its edges are limited by position
-  const DeformableId ropeId = *world.addDeformable(rope);
-  RigidBodyDesc box;
-  box.name = "box";
-  box.shape = RigidShape::box({0.1, 0.1, 0.1});
-  box.mass = 10.0;
-  box.position = {0, 0.9, 0};
-  const RigidBodyId boxId = *world.addRigidBody(box);
-  ASSERT_TRUE(world.addFixedPoint(ropeId, 0, {0, 2, 0}).ok());
-  AnchorDesc anchor = AnchorDesc::node(ropeId, 10, boxId);
-  anchor.maxForce = 20.0;
-  ASSERT_TRUE(world.addAnchor(anchor).ok());
+  // Swept, so that its edges are limited by position.
+  const auto [ropeId, boxId] = hangBoxOnRope(world, "rope", "box", kUnbounded, 20.0, RowSolverKind::Iterative);
   for (int node = 1; node < 11; ++node) ASSERT_TRUE(world.setNodeVelocity(ropeId, node, {3.0, 0, 0}).ok());
   for (int step = 0; step < 60; ++step) {
     ASSERT_TRUE(world.step(kStep).ok());
