@@ -371,7 +371,7 @@ Result<DeformableId> World::addDeformable(const DeformableDesc& desc) {
     }
   }
   DeformableRecord record{desc.name, first, mesh.nodeCount(), mesh, desc.rowSolver, desc.collision, desc.paradigm,
-                          desc.damping, {}, {}, {}, {}, false, {}, {}};
+                          desc.damping, {}, {}, {}, {}, {}, false, {}, {}};
   // FEM bodies and implicit springs are stepped by the implicit solve; springs on a
   // position-based body are too.
   FemElements fem;
@@ -384,6 +384,8 @@ Result<DeformableId> World::addDeformable(const DeformableDesc& desc) {
     record.implicit = makeImplicitBody(first, mesh.nodeCount(), std::move(fem), std::move(implicitSprings));
   record.paradigmEdges = mesh.edges;
   record.paradigmEdges.insert(record.paradigmEdges.end(), mesh.shearEdges.begin(), mesh.shearEdges.end());
+  if (desc.paradigm.type == ParadigmType::PositionBased)
+    record.paradigmRest = positionBasedRest(mesh.positions, record.paradigmEdges, mesh.tetrahedra);
   // The collision surface: its triangles, and the nodes on them (every node when it has none).
   std::vector<bool> onSurface(mesh.nodeCount(), mesh.triangles.empty());
   for (const auto& t : mesh.triangles) {

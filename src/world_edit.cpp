@@ -311,6 +311,7 @@ Status World::removeDeformable(DeformableId body) {
   record.surfaceTriangles.clear();
   record.surfaceEdges.clear();
   record.paradigmEdges.clear();
+  record.paradigmRest = PositionBasedRest{};
   w.deformableSlots.remove(body.index, false);
   w.directBlocksStale = true;
   return {};

@@ -45,6 +45,7 @@ struct DeformableRecord {
   std::vector<std::array<int32_t, 3>> surfaceTriangles;    // global indices
   std::vector<std::array<int32_t, 2>> surfaceEdges;        // global indices
   std::vector<std::array<int32_t, 2>> paradigmEdges;       // local: edges and shear edges
+  PositionBasedRest paradigmRest;                           // PBD: of paradigmEdges and the tetrahedra
   bool implicitStep = false;  // FEM, or mass-spring with implicit springs: stepped by `implicit`
   ImplicitBody implicit;
   Supports supports;  // surfaces its nodes rest on, from last step (models/supports.h)
@@ -129,6 +130,7 @@ struct World::Impl final : bullet::SolverHooks {
     std::vector<Vec3> before, pushed;    // per node
     std::vector<Vec3> reaction;          // per node held by a body: −Σ m Δx of its edges' other ends
   } strainScratch;
+  PositionBasedScratch paradigmScratch;  // of applyParadigm
 
   StepReport report;
   double time = 0.0;

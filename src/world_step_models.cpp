@@ -23,27 +23,30 @@ void World::Impl::computeUnconstrainedVelocities(double h) {
 
 void World::Impl::applyParadigm(DeformableRecord& body, double h) {
   if (body.paradigm.type == ParadigmType::MassSpring || body.paradigm.type == ParadigmType::CorotationalFem) return;
+  PositionBasedScratch& scratch = paradigmScratch;
   PositionBasedBody model{body.firstNode,           body.nodeCount,
                           body.restMesh.positions,  body.paradigmEdges,
-                          body.restMesh.tetrahedra, body.paradigm.stiffness,
-                          body.paradigm.damping,    body.paradigm.iterations,
-                          {},                       {},
-                          {}};
+                          body.restMesh.tetrahedra, &body.paradigmRest,
+                          body.paradigm.stiffness,  body.paradigm.damping,
+                          body.paradigm.iterations, {},
+                          {},                       {}};
   // PBD projects its supports as constraints among its own (weighting held nodes in the
   // projections, as shape matching's fit does, blew a jelly resting on a box up); what they
   // pushed is the supports' impulse, (1 − γ) m Δ / h per node.
   if (body.paradigm.type == ParadigmType::PositionBased) {
-    std::vector<SupportPlane> planes;
+    std::vector<SupportPlane>& planes = scratch.supports;
+    planes.clear();
     for (int32_t i = 0; i < body.nodeCount; ++i) {
       const int32_t n = body.firstNode + i;
       if (body.supports.normal[i].isZero() || nodes.inverseMass[n] == 0.0) continue;
       const Vec3& normal = body.supports.normal[i];
       planes.push_back({i, normal, normal.dot(nodes.position[n]) + h * body.supports.targetSpeed(i, h)});
     }
-    std::vector<double> push(body.nodeCount, 0.0);
+    std::vector<double>& push = scratch.supportPush;
+    push.assign(static_cast<size_t>(body.nodeCount), 0.0);
     model.supports = planes;
     model.supportPush = push;
-    applyPositionBasedDynamics(model, nodes, h);
+    applyPositionBasedDynamics(model, nodes, h, scratch);
     for (const SupportPlane& plane : planes)
       if (push[plane.node] > 0)
         body.supports.recordHold(plane.node, (1.0 - body.paradigm.damping) * push[plane.node] /
@@ -53,7 +56,8 @@ void World::Impl::applyParadigm(DeformableRecord& body, double h) {
   constexpr double kHeldWeight = 1000.0;  // how much heavier a held node counts in the fit
   const std::span<const double> inverseMass(nodes.inverseMass.data() + body.firstNode, body.nodeCount);
   body.supports.hold(std::span<Vec3>(nodes.velocity.data() + body.firstNode, body.nodeCount), inverseMass, h);
-  std::vector<double> weights(inverseMass.begin(), inverseMass.end());
+  std::vector<double>& weights = scratch.weightInverseMass;
+  weights.assign(inverseMass.begin(), inverseMass.end());
   double heldMass = 0.0;
   for (int32_t i = 0; i < body.nodeCount; ++i) {
     if (body.supports.holdBody[i] < 0) continue;
@@ -62,7 +66,7 @@ void World::Impl::applyParadigm(DeformableRecord& body, double h) {
   }
   model.weightInverseMass = weights;
   const Vec3 before = bodyMomentum(body);
-  applyShapeMatching(model, nodes, h);
+  applyShapeMatching(model, nodes, h, scratch);
   // Weighted towards the held nodes, the fit moves the body's mass centre: that momentum came
   // through the held nodes from their supports, so it is theirs, by mass. Along each support's
   // normal; along the surface it would be a friction with no bound (a shape-matched cube held on

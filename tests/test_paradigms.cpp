@@ -47,14 +47,16 @@ TEST(Paradigms, RigidMotionGivesNoGoalDisplacement) {
   std::vector<double> inverseMass;
   for (double m : mesh.masses) inverseMass.push_back(1.0 / m);
   std::vector<std::array<int32_t, 2>> edges = mesh.edges;
-  const PositionBasedBody body{0, mesh.nodeCount(), mesh.positions, edges, mesh.tetrahedra, 0.7, 0.1, 5, {}, {}, {}};
+  const PositionBasedRest rest = positionBasedRest(mesh.positions, edges, mesh.tetrahedra);
+  const PositionBasedBody body{0, mesh.nodeCount(), mesh.positions, edges, mesh.tetrahedra, &rest, 0.7, 0.1, 5, {}, {}, {}};
   std::mt19937 rng(5);
   for (int trial = 0; trial < 10; ++trial) {
     Mat3 rotation;
     Vec3 translation;
     const std::vector<Vec3> moved = movedRigidly(mesh.positions, rng, rotation, translation);
-    const std::vector<Vec3> matched = shapeMatchingGoals(body, moved, inverseMass);
-    const std::vector<Vec3> projected = positionBasedGoals(body, moved, inverseMass);
+    std::vector<Vec3> matched(moved.size()), projected(moved.size());
+    shapeMatchingGoals(body, moved, inverseMass, matched);
+    positionBasedGoals(body, moved, inverseMass, projected);
     for (int32_t i = 0; i < mesh.nodeCount(); ++i) {
       const double scale = std::max(1.0, moved[i].norm());
       EXPECT_LT((matched[i] - moved[i]).norm(), 1e-9 * scale);

@@ -2,16 +2,17 @@
 
 #include <Eigen/SVD>
 
+#include <algorithm>
 #include <cmath>
 
 namespace tandem {
 namespace {
 
-std::vector<Vec3> predict(const PositionBasedBody& body, const NodeArrays& nodes, double timeStep) {
-  std::vector<Vec3> predicted(body.nodeCount);
+void predict(const PositionBasedBody& body, const NodeArrays& nodes, double timeStep, PositionBasedScratch& scratch) {
+  scratch.predicted.resize(static_cast<size_t>(body.nodeCount));
+  scratch.goals.resize(static_cast<size_t>(body.nodeCount));
   for (int32_t i = 0; i < body.nodeCount; ++i)
-    predicted[i] = nodes.position[body.firstNode + i] + timeStep * nodes.velocity[body.firstNode + i];
-  return predicted;
+    scratch.predicted[i] = nodes.position[body.firstNode + i] + timeStep * nodes.velocity[body.firstNode + i];
 }
 
 // Mass-weighted centre; pinned nodes (m⁻¹ = 0) count with a large mass.
@@ -28,8 +29,19 @@ Vec3 centre(std::span<const Vec3> x, std::span<const double> inverseMass, double
 
 }  // namespace
 
-std::vector<Vec3> shapeMatchingGoals(const PositionBasedBody& body, std::span<const Vec3> predicted,
-                                     std::span<const double> inverseMass) {
+PositionBasedRest positionBasedRest(std::span<const Vec3> restPositions, std::span<const std::array<int32_t, 2>> edges,
+                                    std::span<const std::array<int32_t, 4>> tetrahedra) {
+  PositionBasedRest rest;
+  const auto& x = restPositions;
+  rest.edgeLength.reserve(edges.size());
+  for (const auto& e : edges) rest.edgeLength.push_back((x[e[1]] - x[e[0]]).norm());
+  rest.sixVolume.reserve(tetrahedra.size());
+  for (const auto& t : tetrahedra) rest.sixVolume.push_back((x[t[1]] - x[t[0]]).dot((x[t[2]] - x[t[0]]).cross(x[t[3]] - x[t[0]])));
+  return rest;
+}
+
+void shapeMatchingGoals(const PositionBasedBody& body, std::span<const Vec3> predicted,
+                        std::span<const double> inverseMass, std::span<Vec3> goals) {
   double mass = 0.0;
   const Vec3 c = centre(predicted, inverseMass, mass);
   const Vec3 c0 = centre(body.restPositions, inverseMass, mass);
@@ -43,23 +55,15 @@ std::vector<Vec3> shapeMatchingGoals(const PositionBasedBody& body, std::span<co
   Mat3 u = svd.matrixU();
   if ((u * svd.matrixV().transpose()).determinant() < 0) u.col(2) = -u.col(2);
   const Mat3 rotation = u * svd.matrixV().transpose();
-  std::vector<Vec3> goals(body.nodeCount);
   for (int32_t i = 0; i < body.nodeCount; ++i) goals[i] = rotation * (body.restPositions[i] - c0) + c;
-  return goals;
 }
 
-std::vector<Vec3> positionBasedGoals(const PositionBasedBody& body, std::span<const Vec3> predicted,
-                                     std::span<const double> inverseMass) {
-  std::vector<Vec3> x(predicted.begin(), predicted.end());
+void positionBasedGoals(const PositionBasedBody& body, std::span<const Vec3> predicted,
+                        std::span<const double> inverseMass, std::span<Vec3> x) {
+  std::copy(predicted.begin(), predicted.end(), x.begin());
   const double k = 1.0 - std::pow(1.0 - body.stiffness, 1.0 / body.iterations);
-  const auto& rest = body.restPositions;
-  // Rest lengths and six rest volumes, once for all the iterations.
-  std::vector<double> restLength(body.edges.size()), restVolume(body.tetrahedra.size());
-  for (size_t i = 0; i < body.edges.size(); ++i) restLength[i] = (rest[body.edges[i][1]] - rest[body.edges[i][0]]).norm();
-  for (size_t i = 0; i < body.tetrahedra.size(); ++i) {
-    const auto& t = body.tetrahedra[i];
-    restVolume[i] = (rest[t[1]] - rest[t[0]]).dot((rest[t[2]] - rest[t[0]]).cross(rest[t[3]] - rest[t[0]]));
-  }
+  const std::vector<double>& restLength = body.rest->edgeLength;
+  const std::vector<double>& restVolume = body.rest->sixVolume;
   for (int iteration = 0; iteration < body.iterations; ++iteration) {
     for (size_t i = 0; i < body.edges.size(); ++i) {
       const auto& e = body.edges[i];
@@ -92,14 +96,15 @@ std::vector<Vec3> positionBasedGoals(const PositionBasedBody& body, std::span<co
       if (!body.supportPush.empty()) body.supportPush[plane.node] += below;
     }
   }
-  return x;
 }
 
-void applyShapeMatching(const PositionBasedBody& body, NodeArrays& nodes, double timeStep) {
-  const std::vector<Vec3> predicted = predict(body, nodes, timeStep);
+void applyShapeMatching(const PositionBasedBody& body, NodeArrays& nodes, double timeStep,
+                        PositionBasedScratch& scratch) {
+  predict(body, nodes, timeStep, scratch);
+  const std::vector<Vec3>& predicted = scratch.predicted;
+  const std::vector<Vec3>& goals = scratch.goals;
   const std::span<const double> inverseMass(nodes.inverseMass.data() + body.firstNode, body.nodeCount);
-  const std::vector<Vec3> goals =
-      shapeMatchingGoals(body, predicted, body.weightInverseMass.empty() ? inverseMass : body.weightInverseMass);
+  shapeMatchingGoals(body, predicted, body.weightInverseMass.empty() ? inverseMass : body.weightInverseMass, scratch.goals);
   for (int32_t i = 0; i < body.nodeCount; ++i) {
     if (inverseMass[i] == 0.0) continue;
     Vec3& v = nodes.velocity[body.firstNode + i];
@@ -107,11 +112,13 @@ void applyShapeMatching(const PositionBasedBody& body, NodeArrays& nodes, double
   }
 }
 
-void applyPositionBasedDynamics(const PositionBasedBody& body, NodeArrays& nodes, double timeStep) {
-  const std::vector<Vec3> predicted = predict(body, nodes, timeStep);
+void applyPositionBasedDynamics(const PositionBasedBody& body, NodeArrays& nodes, double timeStep,
+                                PositionBasedScratch& scratch) {
+  predict(body, nodes, timeStep, scratch);
+  const std::vector<Vec3>& goals = scratch.goals;
   const std::span<const double> inverseMass(nodes.inverseMass.data() + body.firstNode, body.nodeCount);
-  const std::vector<Vec3> goals =
-      positionBasedGoals(body, predicted, body.weightInverseMass.empty() ? inverseMass : body.weightInverseMass);
+  positionBasedGoals(body, scratch.predicted, body.weightInverseMass.empty() ? inverseMass : body.weightInverseMass,
+                     scratch.goals);
   for (int32_t i = 0; i < body.nodeCount; ++i) {
     if (inverseMass[i] == 0.0) continue;
     Vec3& v = nodes.velocity[body.firstNode + i];

@@ -43,12 +43,30 @@ struct SupportPlane {
   double minimum = 0.0;
 };
 
+// What PBD's constraints hold, computed once when the body is made: each edge's rest length
+// and each tetrahedron's rest volume times six (the signed triple product).
+struct PositionBasedRest {
+  std::vector<double> edgeLength;
+  std::vector<double> sixVolume;
+};
+PositionBasedRest positionBasedRest(std::span<const Vec3> restPositions, std::span<const std::array<int32_t, 2>> edges,
+                                    std::span<const std::array<int32_t, 4>> tetrahedra);
+
+// Working memory of the step's paradigms, kept between steps so that the step allocates nothing
+// once its sizes have been reached.
+struct PositionBasedScratch {
+  std::vector<Vec3> predicted, goals;
+  std::vector<double> weightInverseMass, supportPush;
+  std::vector<SupportPlane> supports;
+};
+
 struct PositionBasedBody {
   int32_t firstNode = 0;
   int32_t nodeCount = 0;
   std::span<const Vec3> restPositions;                      // local indices
   std::span<const std::array<int32_t, 2>> edges;           // local indices
   std::span<const std::array<int32_t, 4>> tetrahedra;      // local indices
+  const PositionBasedRest* rest = nullptr;                 // PBD: of these edges and tetrahedra
   double stiffness = 1.0;  // k
   double damping = 0.0;    // γ
   int iterations = 4;      // PBD
@@ -61,16 +79,19 @@ struct PositionBasedBody {
   std::span<double> supportPush;
 };
 
-// Shape matching's goals g for predicted positions `predicted` (local indices).
-std::vector<Vec3> shapeMatchingGoals(const PositionBasedBody& body, std::span<const Vec3> predicted,
-                                     std::span<const double> inverseMass);
+// Shape matching's goals g for predicted positions `predicted` (local indices), into `goals`.
+void shapeMatchingGoals(const PositionBasedBody& body, std::span<const Vec3> predicted,
+                        std::span<const double> inverseMass, std::span<Vec3> goals);
 
-// PBD's goals: `predicted` projected onto the distance and volume constraints.
-std::vector<Vec3> positionBasedGoals(const PositionBasedBody& body, std::span<const Vec3> predicted,
-                                     std::span<const double> inverseMass);
+// PBD's goals: `predicted` projected onto the distance and volume constraints, into `goals`.
+void positionBasedGoals(const PositionBasedBody& body, std::span<const Vec3> predicted,
+                        std::span<const double> inverseMass, std::span<Vec3> goals);
 
-// Applies eq. 2 or eq. 3 to the body's nodes; `nodes.velocity` holds v* on entry.
-void applyShapeMatching(const PositionBasedBody& body, NodeArrays& nodes, double timeStep);
-void applyPositionBasedDynamics(const PositionBasedBody& body, NodeArrays& nodes, double timeStep);
+// Applies eq. 2 or eq. 3 to the body's nodes; `nodes.velocity` holds v* on entry. `scratch`
+// holds the predicted positions and goals.
+void applyShapeMatching(const PositionBasedBody& body, NodeArrays& nodes, double timeStep,
+                        PositionBasedScratch& scratch);
+void applyPositionBasedDynamics(const PositionBasedBody& body, NodeArrays& nodes, double timeStep,
+                                PositionBasedScratch& scratch);
 
 }  // namespace tandem

@@ -1,0 +1,99 @@
+// The step's working memory is kept between steps, so that stepping allocates nothing once it
+// has grown to the scene: every global operator new in this executable is counted. (Checked here
+// for the models' stage; contact detection, the contacts' warm-start table and impact zones
+// still allocate, about 26 times per step on a resting jelly: docs/architecture.md.)
+#include "models/position_based.h"
+
+#include <tandem/mesh.h>
+#include <tandem/world.h>
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstdlib>
+#include <new>
+
+namespace {
+std::atomic<long> g_allocations{0};
+}  // namespace
+
+// The replacements pair malloc with free throughout; gcc cannot see that across inlining.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+#endif
+
+void* operator new(std::size_t size) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+  throw std::bad_alloc();
+}
+void* operator new[](std::size_t size) { return operator new(size); }
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+
+namespace tandem {
+namespace {
+
+constexpr double kStep = 1.0 / 50.0;
+
+// A jelly's mesh, its nodes falling at 1 m/s, and each paradigm's model over it.
+struct Jelly {
+  DeformableMesh mesh = *makeTetCylinder({0, 0.1, 0}, 0.1, 0.2, 2, 8, 3, 0.5);
+  NodeArrays nodes;
+  PositionBasedRest rest = positionBasedRest(mesh.positions, mesh.edges, mesh.tetrahedra);
+  PositionBasedBody model{0, mesh.nodeCount(), mesh.positions, mesh.edges, mesh.tetrahedra, &rest, 1.0, 0.05, 20,
+                          {}, {}, {}};
+  Jelly() {
+    nodes.position = mesh.positions;
+    nodes.velocity.assign(mesh.positions.size(), Vec3(0, -1, 0));
+    nodes.force.assign(mesh.positions.size(), Vec3::Zero());
+    for (double m : mesh.masses) nodes.inverseMass.push_back(1.0 / m);
+  }
+};
+
+// The models' stage keeps its working memory (predicted positions, goals, weights, supports) in
+// a scratch that outlives the step, and PBD's rest lengths and volumes are computed when the body
+// is made: once the scratch has grown to a body, applying its paradigm allocates nothing.
+TEST(StepAllocations, PositionBasedParadigmsAllocateNothingOnceTheirScratchHasGrown) {
+  Jelly jelly;
+  PositionBasedScratch scratch;
+  applyPositionBasedDynamics(jelly.model, jelly.nodes, kStep, scratch);
+  applyShapeMatching(jelly.model, jelly.nodes, kStep, scratch);
+  const long before = g_allocations.load();
+  for (int step = 0; step < 5; ++step) {
+    applyPositionBasedDynamics(jelly.model, jelly.nodes, kStep, scratch);
+    applyShapeMatching(jelly.model, jelly.nodes, kStep, scratch);
+  }
+  EXPECT_EQ(g_allocations.load() - before, 0);
+  // The counter counts: the first use of a fresh scratch allocates.
+  PositionBasedScratch fresh;
+  applyShapeMatching(jelly.model, jelly.nodes, kStep, fresh);
+  EXPECT_GT(g_allocations.load() - before, 0);
+  for (const Vec3& v : jelly.nodes.velocity) ASSERT_TRUE(v.allFinite());
+}
+
+// PBD's rest geometry: each edge's length and each tetrahedron's six volumes, positive for the
+// generator's tetrahedra, summing to six times the cylinder's volume (its polygonal section).
+TEST(StepAllocations, PositionBasedRestHoldsEdgeLengthsAndVolumes) {
+  const Jelly jelly;
+  ASSERT_EQ(jelly.rest.edgeLength.size(), jelly.mesh.edges.size());
+  ASSERT_EQ(jelly.rest.sixVolume.size(), jelly.mesh.tetrahedra.size());
+  for (size_t i = 0; i < jelly.mesh.edges.size(); ++i) {
+    const auto& e = jelly.mesh.edges[i];
+    EXPECT_DOUBLE_EQ(jelly.rest.edgeLength[i], (jelly.mesh.positions[e[1]] - jelly.mesh.positions[e[0]]).norm());
+  }
+  double volume = 0.0;
+  for (double six : jelly.rest.sixVolume) {
+    EXPECT_GT(six, 0.0);
+    volume += six / 6.0;
+  }
+  const int sectors = 8;  // the generator's: a regular octagon of radius 0.1, 0.2 high
+  const double octagon = 0.5 * sectors * 0.1 * 0.1 * std::sin(2 * 3.14159265358979323846 / sectors);
+  EXPECT_NEAR(volume, octagon * 0.2, 1e-12);
+}
+
+}  // namespace
+}  // namespace tandem
