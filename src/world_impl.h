@@ -131,6 +131,7 @@ struct World::Impl final : bullet::SolverHooks {
     std::vector<Vec3> reaction;          // per node held by a body: −Σ m Δx of its edges' other ends
   } strainScratch;
   PositionBasedScratch paradigmScratch;  // of applyParadigm
+  std::vector<Vec3> sweepStartVelocity;  // the nodes' velocities before the warm start
 
   StepReport report;
   double time = 0.0;
@@ -141,7 +142,8 @@ struct World::Impl final : bullet::SolverHooks {
   explicit Impl(const WorldSettings& s) : settings(s), bullet(s.gravity) {}
 
   SolverContext context() {
-    return {nodes.velocity, nodes.inverseMass, rigid, substepLength, settings.solver.baumgarte / substepLength};
+    return {nodes.velocity, nodes.inverseMass, rigid, substepLength, settings.solver.baumgarte / substepLength,
+            sweepStartVelocity};
   }
 
   // ---- Substeps ---------------------------------------------------------------------------

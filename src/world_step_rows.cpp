@@ -114,6 +114,7 @@ void World::Impl::buildDirectBlocks() {
 
 void World::Impl::afterSetup() {
   bullet.loadRigidVelocities(rigid);
+  sweepStartVelocity = nodes.velocity;
   SolverContext ctx = context();
   if (settings.solver.warmStart)
     rows.warmStart(ctx);

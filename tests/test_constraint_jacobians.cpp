@@ -1,5 +1,6 @@
 // Each row type's Jacobian against a central finite difference of its constraint function C,
-// at random configurations; and each row's effective mass against J M⁻¹ Jᵀ built by hand.
+// at random configurations; and each row's effective mass against J M⁻¹ Jᵀ built by hand. And a
+// swept edge's geometric stiffness against the implicit response (M + h² K_g)⁻¹ it stands for.
 #include "constraints/anchor.h"
 #include "constraints/bending.h"
 #include "constraints/fixed_point.h"
@@ -7,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <functional>
 #include <random>
 
@@ -178,6 +180,52 @@ TEST(Jacobians, AnchorMatchesFiniteDifference) {
     const Mat3 k = j * inverseMass * j.transpose();
     EXPECT_LT((row.effectiveMass * k - Mat3::Identity()).norm(), 1e-9);
   }
+}
+
+// A taut edge (last step's tension T) whose end j is given a sideways impulse P by some other
+// row: the edge's geometric stiffness h² K_g = s (I − n nᵀ) [I −I; −I I], s = h T / ℓ = |λ| / ℓ · h,
+// makes the pair answer as the implicit system (M + h² K_g) Δv = (0, P) does, to rounding, with
+// P shared between the nodes and their momentum exactly P; along the edge, and for an edge that
+// was not taut, the row does nothing.
+TEST(GeometricStiffness, ASweptEdgeAnswersASidewaysImpulseAsTheImplicitSystemDoes) {
+  constexpr double h = 0.02, tension = 50.0, length = 0.5, mi = 0.2, mj = 0.05, impulse = 0.01;
+  const Vec3 n = Vec3(1, 2, 2).normalized(), sideways = n.cross(Vec3::UnitZ()).normalized();
+  auto run = [&](double lastLambda, const Vec3& direction) {
+    NodeArrays nodes;
+    nodes.position = {Vec3::Zero(), length * n};
+    nodes.velocity = {Vec3::Zero(), Vec3::Zero()};
+    nodes.force = {Vec3::Zero(), Vec3::Zero()};
+    nodes.inverseMass = {1.0 / mi, 1.0 / mj};
+    InextensibilityRow row;
+    row.node = {0, 1};
+    row.restLength = length;
+    row.lambdaMin = -INFINITY;
+    row.lambdaMax = INFINITY;
+    row.lambda = lastLambda;
+    prepareInextensibility(row, nodes, h, 0.0);
+    const std::vector<Vec3> start = nodes.velocity;  // before the step's impulses
+    nodes.velocity[1] += impulse / mj * direction;   // another row's
+    std::vector<RigidSolverState> rigid;
+    SolverContext ctx{nodes.velocity, nodes.inverseMass, rigid, h, 0.0, start};
+    solveGeometricStiffness(row, ctx);
+    return nodes.velocity;
+  };
+  // Taut: λ = −T h. The implicit response across the edge, per unit of P.
+  const std::vector<Vec3> v = run(-tension * h, sideways);
+  const double s = h * tension * h / length;
+  const double denominator = mi * mj + s * (mi + mj);
+  EXPECT_NEAR(v[0].dot(sideways), impulse * s / denominator, 1e-14);
+  EXPECT_NEAR(v[1].dot(sideways), impulse * (mi + s) / denominator, 1e-14);
+  EXPECT_LT((mi * v[0] + mj * v[1] - impulse * sideways).norm(), 1e-15);
+  EXPECT_LT(std::abs(v[0].dot(n)) + std::abs(v[1].dot(n)), 1e-15);
+  // Without it the struck node alone would move: here the stiffness passes 40 % of P to the other.
+  EXPECT_GT(mi * v[0].dot(sideways), 0.3 * impulse);
+  // Along the edge: nothing (that is the row's own Jacobian's).
+  const std::vector<Vec3> along = run(-tension * h, n);
+  EXPECT_EQ(along[0], Vec3::Zero());
+  // An edge in compression or slack last step: nothing.
+  const std::vector<Vec3> slack = run(tension * h, sideways);
+  EXPECT_EQ(slack[0], Vec3::Zero());
 }
 
 }  // namespace

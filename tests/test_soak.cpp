@@ -276,7 +276,9 @@ const SoakCase kCases[] = {
     // And when strain limiting came to hold anchored nodes (heavy / light / rope 0.89 / 0.91 /
     // 0.23 mm/s on main before it).
     {"rope_wheel.json", 20.0, 6.0, {{"heavy", 0.66e-3}, {"light", 0.50e-3}, {"wheel", 0.029e-3}, {"rope", 0.092e-3}}},
-    {"cloth_sphere.json", 20.0, 8.0, {{"cloth", 0.43e-3}}},
+    // cloth_sphere re-measured when the swept edges got their geometric stiffness (0.53 mm/s on
+    // main before it; the nodes' own drift 12.5 → 4.3 mm on average from 8 s to 20 s).
+    {"cloth_sphere.json", 20.0, 8.0, {{"cloth", 0.26e-3}}},
     // jelly_dish re-measured when friction came to be bounded by the supports' load as well
     // (constraints/contact.h): the FEM jelly crept 1.14 mm/s, the PBD one 0.48, the bar 0.32; and
     // when shape matching's fit stopped holding along the supports (0.0011 mm/s before); and at

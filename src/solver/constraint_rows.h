@@ -109,13 +109,18 @@ struct ConstraintRows {
     for (GrabRow& row : grabs) row.lambda.setZero();
   }
 
-  // One projected Gauss-Seidel sweep over every row not in a direct block.
+  // One projected Gauss-Seidel sweep over every row not in a direct block (each swept edge with
+  // its geometric stiffness, constraints/inextensibility.h).
   void sweep(SolverContext& ctx, FrictionModel friction, SweepStats& stats) {
     for (GrabRow& row : grabs)
       if (row.active) solveGrab(row, ctx, stats);
     for (FixedPointRow& row : fixedPoints)
       if (!row.inDirectBlock) solveFixedPoint(row, ctx, stats);
-    for (int32_t r : sweptEdges) solveInextensibility(inextensibility[static_cast<size_t>(r)], ctx, stats);
+    for (int32_t r : sweptEdges) {
+      InextensibilityRow& row = inextensibility[static_cast<size_t>(r)];
+      solveInextensibility(row, ctx, stats);
+      solveGeometricStiffness(row, ctx);
+    }
     for (BendingRow& row : bending) solveBending(row, ctx, stats);
     for (AnchorRow& row : anchors)
       if (!row.inDirectBlock) solveAnchor(row, ctx, stats);

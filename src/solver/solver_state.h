@@ -139,6 +139,9 @@ struct SolverContext {
   std::span<RigidSolverState> rigid;
   double timeStep = 0.0;
   double biasRate = 0.0;  // β = baumgarte / h, in 1/s
+  // The nodes' velocities before the warm start: what the swept edges' geometric stiffness
+  // measures the rows' velocity change from (constraints/inextensibility.h).
+  std::span<const Vec3> startVelocity = {};
 };
 
 // Accumulates Δλ² over a sweep for the RMS reported per iteration.
