@@ -181,14 +181,6 @@ std::vector<RigidContact> World::rigidContacts() const {
 
 // ---- Removal -------------------------------------------------------------------------------
 
-// The warm-start impulses of the contacts left, as rememberContacts keeps them.
-template <class WorldImpl>
-static void rememberRemainingContacts(WorldImpl& w) {
-  w.previousContacts.clear();
-  for (const ContactRow& row : w.rows.contacts)
-    w.previousContacts[row.key] = {row.lambdaNormal, row.impulse() - row.lambdaNormal * row.normal, row.releasedFromBlock};
-}
-
 // Erases the anchor or fixed point rows `erase` picks, with their slots.
 template <class Row, class Pick>
 static void eraseRows(std::vector<Row>& rows, IdSlots& slots, Pick erase) {
@@ -252,7 +244,7 @@ Status World::removeRigidBody(RigidBodyId body) {
   eraseRows(w.rows.anchors, w.anchorSlots, [b](const AnchorRow& row) { return row.body == b; });
   releaseGrabs(w, [b](const GrabRow& row) { return row.onRigid() && row.body == b; });
   std::erase_if(w.rows.contacts, [b](const ContactRow& row) { return row.body == b; });
-  rememberRemainingContacts(w);
+  w.setPreviousContacts();  // the warm-start impulses of the contacts left
   for (DeformableRecord& record : w.deformables) {
     Supports& supports = record.supports;
     for (size_t i = 0; i < supports.body.size(); ++i)
@@ -293,7 +285,7 @@ Status World::removeDeformable(DeformableId body) {
   eraseRows(w.rows.anchors, w.anchorSlots, [&](const AnchorRow& row) { return anyIn(row.node); });
   releaseGrabs(w, [&](const GrabRow& row) { return !row.onRigid() && anyIn(row.node); });
   std::erase_if(w.rows.contacts, [&](const ContactRow& row) { return anyIn(row.node); });
-  rememberRemainingContacts(w);
+  w.setPreviousContacts();  // the warm-start impulses of the contacts left
   for (int32_t n = first; n < end; ++n) {
     w.nodes.velocity[n].setZero();
     w.nodes.force[n].setZero();

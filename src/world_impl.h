@@ -114,7 +114,12 @@ struct World::Impl final : bullet::SolverHooks {
     Vec3 from, to;  // where a moving target is at the step's start and end
   };
   std::vector<TargetPath> fixedPointPaths, grabPaths;
-  std::unordered_map<uint64_t, ContactImpulse> previousContacts;  // by feature, for warm starting
+  // Last step's contact impulses by feature, for warm starting: sorted by key (the last of equal
+  // keys counts), kept in place so that the step allocates nothing once grown.
+  std::vector<std::pair<uint64_t, ContactImpulse>> previousContacts;
+  std::vector<uint32_t> previousContactOrder;  // scratch of setPreviousContacts
+  const ContactImpulse* previousContact(uint64_t key) const;
+  void setPreviousContacts();  // from this step's rows
   std::vector<char> supportAssigned;  // per node: scratch of detectDeformableContacts
   // Scratch of limitStrainOfUnprojectedRows, kept so that the step allocates nothing once grown.
   struct StrainLimitingScratch {
@@ -177,7 +182,12 @@ struct World::Impl final : bullet::SolverHooks {
   void dampInternalMotion(const DeformableRecord& body, double h);
 
   // ---- Stage 3: deformable contacts ---------------------------------------------------------
-  std::vector<CollisionSurface> collisionSurfaces() const;
+  // The deformables' collision surfaces, in `surfaceScratch` (valid until the next call).
+  std::span<const CollisionSurface> collisionSurfaces();
+  std::vector<CollisionSurface> surfaceScratch;
+  std::vector<CollisionRigid> contactShapes;  // scratch of detectDeformableContacts: per rigid body
+  std::vector<uint64_t> anchoredPairs;        // its nodeBodyKey's of anchored pairs, sorted
+  ContactDetectionScratch contactScratch;
 
   void detectDeformableContacts(double h);
 

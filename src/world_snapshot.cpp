@@ -23,7 +23,7 @@ struct WorldSnapshot::Data {
   std::vector<DeformableRecord> deformables;
   std::vector<EdgeSpring> springs;
   ConstraintRows rows;
-  std::unordered_map<uint64_t, ContactImpulse> previousContacts;
+  std::vector<std::pair<uint64_t, ContactImpulse>> previousContacts;
   std::vector<RigidSolverState> rigid;
   std::vector<uint32_t> rigidGroup, rigidMask;
   IdSlots deformableSlots{""}, anchorSlots{""}, fixedPointSlots{""}, grabSlots{""};

@@ -3,10 +3,13 @@
 // src/world_impl.h holds the state.)
 #include "world_impl.h"
 
+#include <numeric>
+
 namespace tandem {
 
-std::vector<CollisionSurface> World::Impl::collisionSurfaces() const {
-  std::vector<CollisionSurface> surfaces;
+std::span<const CollisionSurface> World::Impl::collisionSurfaces() {
+  std::vector<CollisionSurface>& surfaces = surfaceScratch;
+  surfaces.clear();
   for (const DeformableRecord& body : deformables) {
     if (!body.collision.enabled) continue;
     surfaces.push_back({body.firstNode, body.nodeCount, body.surfaceNodes, body.surfaceTriangles,
@@ -18,29 +21,31 @@ std::vector<CollisionSurface> World::Impl::collisionSurfaces() const {
 }
 
 void World::Impl::detectDeformableContacts(double h) {
-  const std::vector<CollisionSurface> surfaces = collisionSurfaces();
-  std::vector<CollisionRigid> shapes(bullet.rigidBodyCount());
+  const std::span<const CollisionSurface> surfaces = collisionSurfaces();
+  std::vector<CollisionRigid>& shapes = contactShapes;
+  shapes.resize(static_cast<size_t>(bullet.rigidBodyCount()));
   for (int b = 0; b < bullet.rigidBodyCount(); ++b)
     shapes[b] = {rigidShapes[b].get(),        bullet.position(b),        bullet.orientation(b),
                  bullet.linearVelocity(b),    bullet.angularVelocity(b), rigidFriction[b],
                  bullet.mass(b),              rigidGroup[b],             rigidMask[b]};
-  std::unordered_set<uint64_t> anchored;
+  anchoredPairs.clear();
   for (const AnchorRow& row : rows.anchors)
     for (int k = 0; k < 4; ++k)
-      if (row.weight[k] != 0.0) anchored.insert(nodeBodyKey(row.node[k], row.body));
+      if (row.weight[k] != 0.0) anchoredPairs.push_back(nodeBodyKey(row.node[k], row.body));
+  std::sort(anchoredPairs.begin(), anchoredPairs.end());
   rows.contacts.clear();
-  detectContacts(surfaces, nodes, shapes, anchored, h, rows.contacts);
+  detectContacts(surfaces, nodes, shapes, anchoredPairs, h, rows.contacts, contactScratch);
   for (ContactRow& row : rows.contacts) {
     row.startGap = row.gap;
     row.startOffset = row.offset;
   }
   // Warm start from last step's impulse on the same feature, friction kept in the new plane.
   for (ContactRow& row : rows.contacts) {
-    auto previous = previousContacts.find(row.key);
-    if (previous == previousContacts.end()) continue;
-    row.lambdaNormal = previous->second.normal;
-    row.warmFriction = previous->second.friction;
-    row.releasedLastStep = previous->second.releasedFromBlock;
+    const ContactImpulse* previous = previousContact(row.key);
+    if (!previous) continue;
+    row.lambdaNormal = previous->normal;
+    row.warmFriction = previous->friction;
+    row.releasedLastStep = previous->releasedFromBlock;
   }
   // A node its model held on a support carries that load there too: it bounds the friction of
   // its contact with that body (its first, where one node touches the body at several points).
@@ -73,10 +78,31 @@ void World::Impl::noteBodyContacts() {
   directBlocksStale = true;
 }
 
-void World::Impl::rememberContacts() {
+const ContactImpulse* World::Impl::previousContact(uint64_t key) const {
+  const auto byKey = [](const std::pair<uint64_t, ContactImpulse>& entry, uint64_t k) { return entry.first < k; };
+  auto last = std::lower_bound(previousContacts.begin(), previousContacts.end(), key + 1, byKey);
+  if (last == previousContacts.begin() || std::prev(last)->first != key) return nullptr;
+  return &std::prev(last)->second;  // the last of equal keys, as a map assigned in row order kept
+}
+
+void World::Impl::setPreviousContacts() {
+  // By key, equal keys in row order (std::stable_sort would allocate its buffer).
+  std::vector<uint32_t>& order = previousContactOrder;
+  order.resize(rows.contacts.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+    return rows.contacts[a].key < rows.contacts[b].key || (rows.contacts[a].key == rows.contacts[b].key && a < b);
+  });
   previousContacts.clear();
-  for (const ContactRow& row : rows.contacts)
-    previousContacts[row.key] = {row.lambdaNormal, row.impulse() - row.lambdaNormal * row.normal, row.releasedFromBlock};
+  for (uint32_t i : order) {
+    const ContactRow& row = rows.contacts[i];
+    previousContacts.push_back(
+        {row.key, {row.lambdaNormal, row.impulse() - row.lambdaNormal * row.normal, row.releasedFromBlock}});
+  }
+}
+
+void World::Impl::rememberContacts() {
+  setPreviousContacts();
   addHoldImpulsesToSupports();
   rememberSupports();
 }

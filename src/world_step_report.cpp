@@ -43,8 +43,7 @@ void World::Impl::reportViolatedRows() {
 Status World::Impl::checkDiverged() const {
   const double limit = settings.divergenceSpeed;
   auto bad = [limit](const Vec3& x, const Vec3& v) { return !x.allFinite() || !v.allFinite() || v.norm() > limit; };
-  const std::string advice =
-      ": the simulation diverged (try a smaller time step, more iterations or softer springs)";
+  const char* const advice = ": the simulation diverged (try a smaller time step, more iterations or softer springs)";
   for (const DeformableRecord& body : deformables)
     for (int32_t i = 0; i < body.nodeCount; ++i) {
       const int32_t n = body.firstNode + i;

@@ -48,41 +48,45 @@ double boundingRadius(const RigidShape& shape) {
 }
 
 // Points of a shape's surface that can poke into a face between its nodes: box corners and
-// cylinder rims (sampled), in the shape's frame.
-std::vector<Vec3> pokingPoints(const RigidShape& shape) {
-  std::vector<Vec3> points;
-  if (shape.type == ShapeType::ConvexHull) return shape.points;
-  if (shape.type == ShapeType::Compound) {
-    for (const std::vector<Vec3>& hull : shape.hulls) points.insert(points.end(), hull.begin(), hull.end());
-    return points;
-  }
-  if (shape.type == ShapeType::Box) {
+// cylinder rims (sampled), in the shape's frame, moved by `toWorld` and appended to `points`.
+template <class ToWorld>
+void addPokingPoints(const RigidShape& shape, ToWorld toWorld, std::vector<Vec3>& points) {
+  if (shape.type == ShapeType::ConvexHull) {
+    for (const Vec3& p : shape.points) points.push_back(toWorld(p));
+  } else if (shape.type == ShapeType::Compound) {
+    for (const std::vector<Vec3>& hull : shape.hulls)
+      for (const Vec3& p : hull) points.push_back(toWorld(p));
+  } else if (shape.type == ShapeType::Box) {
     for (int corner = 0; corner < 8; ++corner)
-      points.push_back(shape.halfExtents.cwiseProduct(
-          Vec3(corner & 1 ? 1 : -1, corner & 2 ? 1 : -1, corner & 4 ? 1 : -1)));
+      points.push_back(toWorld(shape.halfExtents.cwiseProduct(
+          Vec3(corner & 1 ? 1 : -1, corner & 2 ? 1 : -1, corner & 4 ? 1 : -1))));
   } else if (shape.type == ShapeType::Cylinder) {
     constexpr int kRimSamples = 16;
     for (int k = 0; k < kRimSamples; ++k) {
       const double angle = 2 * 3.14159265358979323846 * k / kRimSamples;
       for (double y : {-shape.halfHeight, shape.halfHeight})
-        points.emplace_back(shape.radius * std::cos(angle), y, shape.radius * std::sin(angle));
+        points.push_back(toWorld(Vec3(shape.radius * std::cos(angle), y, shape.radius * std::sin(angle))));
     }
   }
-  return points;
 }
 
 struct Detector {
   std::span<const CollisionSurface> surfaces;
   const NodeArrays& nodes;
   std::span<const CollisionRigid> rigid;
-  const std::unordered_set<uint64_t>& anchored;
+  std::span<const uint64_t> anchored;  // sorted
   double timeStep;
   std::vector<ContactRow>& contacts;
+  ContactDetectionScratch& scratch;
   std::unordered_set<uint64_t> edgeContacts;  // an edge point is found from both its triangles
 
   // How far two sides may close in this step: twice what their starting speeds give, since the
   // solve can speed a node up (a cloth whipping round an edge). Callers add a thickness.
   double closing(const Vec3& a, const Vec3& b) const { return 2.0 * (a - b).norm() * timeStep; }
+
+  bool isAnchored(int32_t node, int32_t body) const {
+    return std::binary_search(anchored.begin(), anchored.end(), nodeBodyKey(node, body));
+  }
 
   void addRigidContact(const CollisionSurface& surface, const std::array<int32_t, 3>& node,
                        const std::array<double, 3>& weight, int count, int32_t body, const Vec3& rigidPoint,
@@ -109,7 +113,7 @@ struct Detector {
       const Vec3& x = nodes.position[n];
       const Vec3 rigidVelocity = shape.linearVelocity + shape.angularVelocity.cross(x - shape.position);
       const double margin = closing(nodes.velocity[n], rigidVelocity) + surface.thickness;
-      if ((x - shape.position).norm() > reach + margin || anchored.count(nodeBodyKey(n, body))) continue;
+      if ((x - shape.position).norm() > reach + margin || isAnchored(n, body)) continue;
       const geometry::ShapeDistance d =
           geometry::distanceToShape(*shape.shape, rotation.transpose() * (x - shape.position), surface.thickness + margin);
       const double gap = d.distance - surface.thickness;
@@ -184,8 +188,9 @@ struct Detector {
     if (form.type == ShapeType::Plane || form.type == ShapeType::TriangleMesh || surface.triangles.empty()) return;
     const Mat3 rotation = shape.orientation.toRotationMatrix();
     const double reach = boundingRadius(form) + surface.thickness;
-    std::vector<Vec3> points;
-    for (const Vec3& local : pokingPoints(form)) points.push_back(shape.position + rotation * local);
+    std::vector<Vec3>& points = scratch.points;
+    points.clear();
+    addPokingPoints(form, [&](const Vec3& local) -> Vec3 { return shape.position + rotation * local; }, points);
     const Vec3 axis = rotation * Vec3(0, form.halfHeight, 0);
     const double bodySpeed = shape.linearVelocity.norm() + shape.angularVelocity.norm() * boundingRadius(form);
     for (const auto& face : surface.triangles) {
@@ -194,8 +199,7 @@ struct Detector {
       const double size = std::max({(a - centre).norm(), (b - centre).norm(), (c - centre).norm()});
       const double margin = closing(nodes.velocity[face[0]], shape.linearVelocity) + size;
       if ((centre - shape.position).norm() > reach + margin) continue;
-      if (anchored.count(nodeBodyKey(face[0], body)) || anchored.count(nodeBodyKey(face[1], body)) ||
-          anchored.count(nodeBodyKey(face[2], body)))
+      if (isAnchored(face[0], body) || isAnchored(face[1], body) || isAnchored(face[2], body))
         continue;
       if (form.type == ShapeType::Sphere) {
         pointAgainstFace(surface, face, body, shape.position, form.radius, 0);
@@ -227,11 +231,12 @@ struct Detector {
 
   // Which surfaces can touch which: themselves when self-colliding, others when their padded
   // bounding boxes overlap. meets[a * count + b].
-  std::vector<char> meets;
+  std::vector<char>& meets = scratch.meets;
   double largestPad = 0.0;
   void findMeetingSurfaces() {
     const size_t count = surfaces.size();
-    std::vector<Eigen::AlignedBox3d> bounds(count);
+    std::vector<Eigen::AlignedBox3d>& bounds = scratch.bounds;
+    bounds.assign(count, Eigen::AlignedBox3d());
     for (size_t s = 0; s < count; ++s) {
       double fastest = 0.0;
       for (int32_t n : surfaces[s].nodes) {
@@ -415,9 +420,9 @@ uint64_t nodeBodyKey(int32_t node, int32_t body) {
 }
 
 void detectContacts(std::span<const CollisionSurface> surfaces, const NodeArrays& nodes,
-                    std::span<const CollisionRigid> rigid, const std::unordered_set<uint64_t>& anchored,
-                    double timeStep, std::vector<ContactRow>& contacts) {
-  Detector detector{surfaces, nodes, rigid, anchored, timeStep, contacts, {}, {}, 0.0};
+                    std::span<const CollisionRigid> rigid, std::span<const uint64_t> anchored, double timeStep,
+                    std::vector<ContactRow>& contacts, ContactDetectionScratch& scratch) {
+  Detector detector{surfaces, nodes, rigid, anchored, timeStep, contacts, scratch, {}};
   for (const CollisionSurface& surface : surfaces)
     for (int32_t body = 0; body < static_cast<int32_t>(rigid.size()); ++body) {
       if (!collisionGroupsMeet(surface.group, surface.mask, rigid[body].group, rigid[body].mask)) continue;
@@ -430,7 +435,8 @@ void detectContacts(std::span<const CollisionSurface> surfaces, const NodeArrays
 
   // The mass a contact moves, for the pressure friction model (paper eq. 32): the nodes' share,
   // plus the rigid body's mass spread over its contacts.
-  std::vector<int> contactsPerBody(rigid.size(), 0);
+  std::vector<int>& contactsPerBody = scratch.contactsPerBody;
+  contactsPerBody.assign(rigid.size(), 0);
   for (const ContactRow& row : contacts)
     if (row.body >= 0) ++contactsPerBody[row.body];
   for (ContactRow& row : contacts) {

@@ -19,11 +19,12 @@
 #include <tandem/world.h>
 
 #include "collision/geometry.h"
+
+#include <Eigen/Geometry>
 #include "constraints/contact.h"
 #include "solver/solver_state.h"
 
 #include <span>
-#include <unordered_set>
 #include <vector>
 
 namespace tandem {
@@ -57,9 +58,19 @@ struct CollisionRigid {
 // A node anchored to a rigid body does not collide with it (nor do faces around the node).
 uint64_t nodeBodyKey(int32_t node, int32_t body);
 
-// Appends every contact to `contacts`. `anchored` holds nodeBodyKey's of pairs to leave out.
+// Working memory of detectContacts, kept by the caller between steps so that finding contacts
+// with rigid shapes allocates nothing once grown.
+struct ContactDetectionScratch {
+  std::vector<Vec3> points;          // a shape's points that can poke into faces, in the world
+  std::vector<int> contactsPerBody;  // per rigid body
+  std::vector<Eigen::AlignedBox3d> bounds;  // per surface, padded
+  std::vector<char> meets;           // per pair of surfaces: they may touch
+};
+
+// Appends every contact to `contacts`. `anchored` holds nodeBodyKey's of pairs to leave out,
+// sorted.
 void detectContacts(std::span<const CollisionSurface> surfaces, const NodeArrays& nodes,
-                    std::span<const CollisionRigid> rigid, const std::unordered_set<uint64_t>& anchored,
-                    double timeStep, std::vector<ContactRow>& contacts);
+                    std::span<const CollisionRigid> rigid, std::span<const uint64_t> anchored, double timeStep,
+                    std::vector<ContactRow>& contacts, ContactDetectionScratch& scratch);
 
 }  // namespace tandem

@@ -229,6 +229,10 @@ struct Separator {
 ImpactZoneStats separateByImpactZones(std::span<const CollisionSurface> surfaces, std::span<const Vec3> start,
                                       NodeArrays& nodes, double timeStep) {
   ImpactZoneStats stats;
+  // One surface that does not collide with itself has nothing to cross (and nothing allocated).
+  if (surfaces.size() < 2 && std::none_of(surfaces.begin(), surfaces.end(),
+                                          [](const CollisionSurface& s) { return s.selfCollision; }))
+    return stats;
   Separator separator{surfaces, start, nodes, timeStep};
   separator.findMeetingSurfaces();
   separator.gatherFeatures();
