@@ -19,10 +19,10 @@
 #include <tandem/world.h>
 
 #include "collision/geometry.h"
-
-#include <Eigen/Geometry>
 #include "constraints/contact.h"
 #include "solver/solver_state.h"
+
+#include <Eigen/Geometry>
 
 #include <span>
 #include <vector>
