@@ -136,6 +136,7 @@ struct World::Impl final : bullet::SolverHooks {
     std::vector<Vec3> reaction;          // per node held by a body: −Σ m Δx of its edges' other ends
   } strainScratch;
   PositionBasedScratch paradigmScratch;  // of applyParadigm
+  ImplicitSolveScratch implicitScratch;  // of solveImplicitVelocities
   std::vector<Vec3> sweepStartVelocity;  // the nodes' velocities before the warm start
 
   StepReport report;

@@ -10,7 +10,7 @@ void World::Impl::computeUnconstrainedVelocities(double h) {
   for (DeformableRecord& body : deformables) {
     body.supports.clearHolds();
     if (body.implicitStep) {
-      solveImplicitVelocities(body.implicit, body.supports, nodes, settings.gravity, h);  // gravity included
+      solveImplicitVelocities(body.implicit, body.supports, nodes, settings.gravity, h, implicitScratch);  // gravity included
     } else {
       for (int32_t i = body.firstNode; i < body.firstNode + body.nodeCount; ++i)
         if (nodes.inverseMass[i] != 0.0)

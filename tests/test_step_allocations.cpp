@@ -96,9 +96,9 @@ TEST(StepAllocations, PositionBasedRestHoldsEdgeLengthsAndVolumes) {
   EXPECT_NEAR(volume, octagon * 0.2, 1e-12);
 }
 
-// A whole step of a world holding one position-based or shape-matched jelly at rest on the
-// ground: models, Bullet's stages, contact detection, rows, sweeps, integration, strain limiting,
-// impact zones, report.
+// A whole step of a world holding one position-based, shape-matched or FEM jelly at rest on the
+// ground: models (the implicit solve's conjugate gradients too), Bullet's stages, contact
+// detection, rows, sweeps, integration, strain limiting, impact zones, report.
 class RestingJellyStep : public ::testing::TestWithParam<ParadigmType> {};
 
 TEST_P(RestingJellyStep, AllocatesNothingOnceGrown) {
@@ -115,6 +115,8 @@ TEST_P(RestingJellyStep, AllocatesNothingOnceGrown) {
   jelly.paradigm.stiffness = GetParam() == ParadigmType::PositionBased ? 1.0 : 0.5;
   jelly.paradigm.iterations = 20;
   jelly.paradigm.damping = 0.05;
+  jelly.paradigm.youngsModulus = 50000;  // the paper's FEM jelly
+  jelly.paradigm.poissonRatio = 0.3;
   const DeformableId id = *world.addDeformable(jelly);
   for (int step = 0; step < 100; ++step) ASSERT_TRUE(world.step(kStep).ok());
   const long before = g_allocations.load();
@@ -127,9 +129,14 @@ TEST_P(RestingJellyStep, AllocatesNothingOnceGrown) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Paradigms, RestingJellyStep,
-                         ::testing::Values(ParadigmType::ShapeMatching, ParadigmType::PositionBased),
+                         ::testing::Values(ParadigmType::ShapeMatching, ParadigmType::PositionBased,
+                                           ParadigmType::CorotationalFem),
                          [](const auto& param) {
-                           return param.param == ParadigmType::PositionBased ? "PositionBased" : "ShapeMatching";
+                           switch (param.param) {
+                             case ParadigmType::PositionBased: return "PositionBased";
+                             case ParadigmType::ShapeMatching: return "ShapeMatching";
+                             default: return "CorotationalFem";
+                           }
                          });
 
 }  // namespace

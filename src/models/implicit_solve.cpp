@@ -11,12 +11,6 @@ constexpr int kMaxIterations = 100;
 // and doubled the jelly scene's model stage (12.5 → 6.5 ms per step).
 constexpr double kRelativeTolerance = 1e-4;
 
-// A spring's stiffness block k (n nᵀ + max(0, 1 − L/l) (I − n nᵀ)) and its damper's c n nᵀ.
-struct SpringBlocks {
-  Mat3 stiffness = Mat3::Zero();
-  Mat3 damping = Mat3::Zero();
-};
-
 SpringBlocks springBlocks(const EdgeSpring& spring, std::span<const Vec3> position) {
   const Vec3 d = position[spring.nodeB] - position[spring.nodeA];
   const double length = d.norm();
@@ -40,21 +34,25 @@ ImplicitBody makeImplicitBody(int32_t firstNode, int32_t nodeCount, FemElements 
 }
 
 void solveImplicitVelocities(ImplicitBody& body, Supports& supports, NodeArrays& nodes, const Vec3& gravity,
-                             double h) {
+                             double h, ImplicitSolveScratch& work) {
   const int32_t count = body.nodeCount, first = body.firstNode;
   auto free = [&](int32_t i) { return nodes.inverseMass[first + i] > 0; };
   const std::span<const Vec3> position(nodes.position.data() + first, count);
-  std::vector<Vec3> velocity(nodes.velocity.begin() + first, nodes.velocity.begin() + first + count);
+  std::vector<Vec3>& velocity = work.velocity;
+  velocity.assign(nodes.velocity.begin() + first, nodes.velocity.begin() + first + count);
   for (int32_t i = 0; i < count; ++i)
     if (!free(i)) velocity[i].setZero();
 
   // Forces at (x, v): the elements' (with their rotations, which K keeps) and the springs'.
   body.rotations.resize(body.fem.tetrahedra.size());
   const std::vector<Mat3>& rotations = body.rotations;
-  std::vector<Vec3> force(count, Vec3::Zero());
+  std::vector<Vec3>& force = work.force;
+  force.assign(count, Vec3::Zero());
   addFemForces(body.fem, position, force, first, body.rotations);
-  std::vector<EdgeSpring> springs = body.springs;  // local indices
-  std::vector<SpringBlocks> blocks;
+  std::vector<EdgeSpring>& springs = work.springs;  // local indices
+  springs.assign(body.springs.begin(), body.springs.end());
+  std::vector<SpringBlocks>& blocks = work.springBlocks;
+  blocks.clear();
   for (EdgeSpring& spring : springs) {
     spring.nodeA -= first;
     spring.nodeB -= first;
@@ -76,7 +74,7 @@ void solveImplicitVelocities(ImplicitBody& body, Supports& supports, NodeArrays&
     }
   };
   // A y = (M − h D − h² K) y, with pinned nodes held at zero.
-  std::vector<Vec3> scratch;
+  std::vector<Vec3>& scratch = work.product;
   auto apply = [&](const std::vector<Vec3>& y, std::vector<Vec3>& out) {
     negativeStiffness(y, scratch, true);
     out.resize(count);
@@ -92,7 +90,8 @@ void solveImplicitVelocities(ImplicitBody& body, Supports& supports, NodeArrays&
     for (const NodePairStiffness& pair : pairs)
       if (pair.nodeA == pair.nodeB) body.stiffnessDiagonal[pair.nodeA - first] += pair.k.trace() / 3.0;
   }
-  std::vector<double> preconditioner(count, 0.0);
+  std::vector<double>& preconditioner = work.preconditioner;
+  preconditioner.assign(count, 0.0);
   for (int32_t i = 0; i < count; ++i)
     if (free(i)) preconditioner[i] = 1.0 / nodes.inverseMass[first + i] + h * h * body.stiffnessDiagonal[i];
   for (size_t s = 0; s < springs.size(); ++s) {
@@ -103,15 +102,19 @@ void solveImplicitVelocities(ImplicitBody& body, Supports& supports, NodeArrays&
   for (double& d : preconditioner) d = d > 0.0 ? 1.0 / d : 0.0;
 
   // b = h (f + f_ext + m g) + h² K v
-  std::vector<Vec3> b(count), kv;
+  std::vector<Vec3>& b = work.b;
+  std::vector<Vec3>& kv = work.stiffnessTimesVelocity;
+  b.resize(count);
   negativeStiffness(velocity, kv, false);
   for (int32_t i = 0; i < count; ++i)
     b[i] = free(i) ? Vec3(h * (force[i] + nodes.force[first + i] + gravity / nodes.inverseMass[first + i]) - h * h * kv[i])
                    : Vec3::Zero();
 
   // Held nodes, and the normal Δv each must take (see the header).
-  std::vector<Vec3> held(count, Vec3::Zero());
-  std::vector<double> heldChange(count, 0.0);
+  std::vector<Vec3>& held = work.held;
+  std::vector<double>& heldChange = work.heldChange;
+  held.assign(count, Vec3::Zero());
+  heldChange.assign(count, 0.0);
   for (int32_t i = 0; i < count; ++i) {
     const Vec3& n = supports.normal[i];
     if (n.isZero() || !free(i)) continue;
@@ -129,7 +132,12 @@ void solveImplicitVelocities(ImplicitBody& body, Supports& supports, NodeArrays&
   std::vector<Vec3>& x = body.previousStep;
   for (int32_t i = 0; i < count; ++i)
     if (!free(i)) x[i].setZero();
-  std::vector<Vec3> r(count), z(count), p, ap;
+  std::vector<Vec3>& r = work.r;
+  std::vector<Vec3>& z = work.z;
+  std::vector<Vec3>& p = work.p;
+  std::vector<Vec3>& ap = work.ap;
+  r.resize(count);
+  z.resize(count);
   double bNorm = 0.0;
   for (const Vec3& bi : b) bNorm += bi.squaredNorm();
   int iteration = 0;

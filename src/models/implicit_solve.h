@@ -44,10 +44,25 @@ struct ImplicitBody {
 
 ImplicitBody makeImplicitBody(int32_t firstNode, int32_t nodeCount, FemElements fem, std::vector<EdgeSpring> springs);
 
+// A spring's stiffness block k (n nᵀ + max(0, 1 − L/l) (I − n nᵀ)) and its damper's c n nᵀ.
+struct SpringBlocks {
+  Mat3 stiffness = Mat3::Zero();
+  Mat3 damping = Mat3::Zero();
+};
+
+// Working memory of solveImplicitVelocities (per node of the body, local), kept by the caller
+// between steps so that the solve allocates nothing once grown.
+struct ImplicitSolveScratch {
+  std::vector<Vec3> velocity, force, product, b, stiffnessTimesVelocity, held, r, z, p, ap;
+  std::vector<double> preconditioner, heldChange;
+  std::vector<EdgeSpring> springs;  // the body's, local indices
+  std::vector<SpringBlocks> springBlocks;
+};
+
 // v ← v + Δv for the body's free nodes; gravity and the forces already in `nodes.force` are
 // its external forces, taken explicitly. Writes the holds' impulses to `supports`.
 void solveImplicitVelocities(ImplicitBody& body, Supports& supports, NodeArrays& nodes, const Vec3& gravity,
-                             double timeStep);
+                             double timeStep, ImplicitSolveScratch& scratch);
 
 // h D + h² (−K) at the current state, as node-pair blocks (global indices), for a direct block;
 // the elements' rotations are the solve's (the nodes have not moved since).
