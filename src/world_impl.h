@@ -189,6 +189,7 @@ struct World::Impl final : bullet::SolverHooks {
   std::vector<CollisionRigid> contactShapes;  // scratch of detectDeformableContacts: per rigid body
   std::vector<uint64_t> anchoredPairs;        // its nodeBodyKey's of anchored pairs, sorted
   ContactDetectionScratch contactScratch;
+  ImpactZoneScratch impactScratch;  // of separateByImpactZones
 
   void detectDeformableContacts(double h);
 

@@ -157,7 +157,7 @@ void World::Impl::giveReactionToBody(AnchorRow& row, const Vec3& impulse, double
 }
 
 void World::Impl::separateCrossingSurfaces(double h) {
-  const ImpactZoneStats stats = separateByImpactZones(collisionSurfaces(), stepStartPositions, nodes, h);
+  const ImpactZoneStats stats = separateByImpactZones(collisionSurfaces(), stepStartPositions, nodes, h, impactScratch);
   report.impactZones = stats.zones;
   report.impactZoneNodes = stats.zoneNodes;
 }

@@ -33,9 +33,10 @@ struct Separator {
   std::span<const Vec3> start;
   NodeArrays& nodes;
   double timeStep;
+  ImpactZoneScratch& scratch;
   std::vector<Vec3> end{};        // positions before any zone moved them
   std::vector<Vec3> velocity{};   // velocities before any zone changed them
-  std::vector<char> meets{};      // meets[a * count + b]: surfaces a and b may cross
+  std::vector<char>& meets = scratch.meets;  // meets[a * count + b]: surfaces a and b may cross
   std::vector<Feature> faces{}, edges{};  // of the surfaces that may cross
   Zones zones{0};
   std::vector<char> inZone{};     // node has been merged with another
@@ -52,7 +53,8 @@ struct Separator {
 
   void findMeetingSurfaces() {
     const size_t count = surfaces.size();
-    std::vector<Eigen::AlignedBox3d> bounds(count);
+    std::vector<Eigen::AlignedBox3d>& bounds = scratch.bounds;
+    bounds.resize(count);
     for (size_t s = 0; s < count; ++s) bounds[s] = sweptBox(surfaces[s].nodes);
     meets.assign(count * count, 0);
     for (size_t a = 0; a < count; ++a)
@@ -228,12 +230,14 @@ struct Separator {
 
 ImpactZoneStats separateByImpactZones(std::span<const CollisionSurface> surfaces, std::span<const Vec3> start,
                                       NodeArrays& nodes, double timeStep) {
+  ImpactZoneScratch scratch;
+  return separateByImpactZones(surfaces, start, nodes, timeStep, scratch);
+}
+
+ImpactZoneStats separateByImpactZones(std::span<const CollisionSurface> surfaces, std::span<const Vec3> start,
+                                      NodeArrays& nodes, double timeStep, ImpactZoneScratch& scratch) {
   ImpactZoneStats stats;
-  // One surface that does not collide with itself has nothing to cross (and nothing allocated).
-  if (surfaces.size() < 2 && std::none_of(surfaces.begin(), surfaces.end(),
-                                          [](const CollisionSurface& s) { return s.selfCollision; }))
-    return stats;
-  Separator separator{surfaces, start, nodes, timeStep};
+  Separator separator{surfaces, start, nodes, timeStep, scratch};
   separator.findMeetingSurfaces();
   separator.gatherFeatures();
   if (separator.faces.empty() && separator.edges.empty()) return stats;

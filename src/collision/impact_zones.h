@@ -42,8 +42,18 @@ struct ImpactZoneStats {
   int passes = 0;
 };
 
+// Working memory of separateByImpactZones that every call needs, kept by the caller between
+// steps (so that surfaces that cannot meet cost no allocation).
+struct ImpactZoneScratch {
+  std::vector<Eigen::AlignedBox3d> bounds;  // per surface, swept over the step
+  std::vector<char> meets;                  // per pair of surfaces: they may cross
+};
+
 // Moves nodes (position and velocity) so that no surface crosses another or itself (when
 // self-colliding) between `start` and the nodes' positions. `start` holds every node.
+ImpactZoneStats separateByImpactZones(std::span<const CollisionSurface> surfaces, std::span<const Vec3> start,
+                                      NodeArrays& nodes, double timeStep, ImpactZoneScratch& scratch);
+// The same with working memory of its own.
 ImpactZoneStats separateByImpactZones(std::span<const CollisionSurface> surfaces, std::span<const Vec3> start,
                                       NodeArrays& nodes, double timeStep);
 

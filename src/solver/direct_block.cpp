@@ -537,8 +537,10 @@ void DirectBlock::solve(ConstraintRows& rows, SolverContext& ctx, SweepStats& st
   // Active set over the contacts: solve; a contact that would end up pulling is released (its
   // impulse so far taken back as a known load on the block) and the block solved again.
   // Rows released in an earlier sweep belong to the PGS sweep now and are left alone.
-  std::vector<bool> releasedHere(rowCount, false);
-  Eigen::VectorXd prescribed = Eigen::VectorXd::Zero(rowCount);  // Δλ = −λ so far, per row released here
+  std::vector<char>& releasedHere = m_releasedHere;
+  releasedHere.assign(static_cast<size_t>(rowCount), 0);
+  Eigen::VectorXd& prescribed = m_prescribed;  // Δλ = −λ so far, per row released here
+  prescribed.setZero(rowCount);
   for (int round = 0;; ++round) {
     for (int32_t r = 0; r < rowCount; ++r)
       if (releasedHere[r]) prescribed[r] = -rows.contacts[m_rows[r].index].lambdaNormal;
@@ -574,12 +576,13 @@ void DirectBlock::solve(ConstraintRows& rows, SolverContext& ctx, SweepStats& st
       }
     }
 
-    std::vector<int32_t> released;
+    std::vector<int32_t>& released = m_releasedNow;
+    released.clear();
     for (size_t r = m_persistentRows; r < m_rows.size(); ++r) {
       const double total = rows.contacts[m_rows[r].index].lambdaNormal - m_solution[m_dofCount + r];
       if (!m_released[r] && total < 0.0) {
         released.push_back(static_cast<int32_t>(r));
-        releasedHere[r] = true;
+        releasedHere[r] = 1;
       }
     }
     if (released.empty()) break;

@@ -208,6 +208,9 @@ class DirectBlock {
   SparseMatrix m_kkt;                                                 // its lower triangle, factorised
   std::vector<std::pair<size_t, size_t>> m_rowEntries;  // each row's entries; its diagonal last
   std::vector<bool> m_released;  // contacts let go this step
+  std::vector<char> m_releasedHere;     // scratch of solve(): let go in this solve
+  Eigen::VectorXd m_prescribed;         // scratch of solve(): their Δλ = −λ so far
+  std::vector<int32_t> m_releasedNow;   // scratch of solve(): let go in this round
   std::vector<Eigen::Index> m_releasedRows;  // KKT rows let go since the last factorisation
   Eigen::MatrixXd m_releasedColumns;         // A⁻¹ e_r for each of them
   Eigen::PartialPivLU<Eigen::MatrixXd> m_releasedCoupling;  // of those columns' released rows
