@@ -79,10 +79,10 @@ void World::Impl::noteBodyContacts() {
 }
 
 const ContactImpulse* World::Impl::previousContact(uint64_t key) const {
-  const auto byKey = [](const std::pair<uint64_t, ContactImpulse>& entry, uint64_t k) { return entry.first < k; };
-  auto last = std::lower_bound(previousContacts.begin(), previousContacts.end(), key + 1, byKey);
-  if (last == previousContacts.begin() || std::prev(last)->first != key) return nullptr;
-  return &std::prev(last)->second;  // the last of equal keys, as a map assigned in row order kept
+  const auto beforeEntry = [](uint64_t k, const std::pair<uint64_t, ContactImpulse>& entry) { return k < entry.first; };
+  const auto after = std::upper_bound(previousContacts.begin(), previousContacts.end(), key, beforeEntry);
+  if (after == previousContacts.begin() || std::prev(after)->first != key) return nullptr;
+  return &std::prev(after)->second;  // the last of equal keys, as a map assigned in row order kept
 }
 
 void World::Impl::setPreviousContacts() {
