@@ -346,14 +346,13 @@ void DirectBlock::factorise(bool mayKeep, bool reusable) {
   ++m_factorisations;
 }
 
-template <class Block>
-void DirectBlock::residual(const Block& rhs, const Block& z, Block& out) const {
+void DirectBlock::residual(const Eigen::VectorXd& rhs, const Eigen::VectorXd& z, Eigen::VectorXd& out) const {
   out.noalias() = m_kkt.selfadjointView<Eigen::Lower>() * z;
   out = rhs - out;
   for (int32_t r = 0; r < scalarRowCount(); ++r) {
     const Eigen::Index k = m_dofCount + r;
-    if (m_released[r]) out.row(k).setZero();
-    else if (m_active[r]) out.row(k) -= m_compliance[r] * z.row(k);
+    if (m_released[r]) out[k] = 0.0;
+    else if (m_active[r]) out[k] -= m_compliance[r] * z[k];
   }
 }
 
@@ -711,13 +710,9 @@ void DirectBlock::computeFrictionResponses(const ConstraintRows& rows) {
     writeImpulseOnDofs(row, row.tangent1, m_columns, response.column);
     writeImpulseOnDofs(row, row.tangent2, m_columns, response.column + 1);
   }
-  if (!m_factorFresh) m_columnsRhs = m_columns;
+  // With a kept factorisation these are the exact responses of the system it was made for, a few
+  // steps old: no refinement step (see the header, "Friction in the block's metric").
   solveKktColumns(m_columns, true);
-  if (!m_factorFresh) {  // a kept factorisation: one refinement step, as in solve()
-    residual(m_columnsRhs, m_columns, m_columnsResidual);
-    solveKktColumns(m_columnsResidual, true);
-    m_columns += m_columnsResidual;
-  }
   // The solution's top is the velocity change Δv of the block's degrees of freedom (in a body's
   // free directions), its bottom −Δλ of the rows (a released row's, none).
   m_frictionImpulse = -m_columns.bottomRows(rowCount);
