@@ -244,10 +244,26 @@ TEST(Contact, BoxLiftedOffAHammockLeavesTheClothBehind) {
   GrabDesc grab;
   grab.body = box;
   grab.point = world.rigidPosition(box);
-  grab.target = grab.point + Vec3(0, 2.0, 0);
+  grab.target = grab.point + Vec3(0, 10.0, 0);  // far: the grab pulls at its bound all the way
   grab.maxForce = 4.0 * kGravity;
   ASSERT_TRUE(world.addGrab(grab).ok());
-  ASSERT_TRUE(world.step(kStep).ok());  // the cloth, unloaded, springs up under it for a step
+  // The cloth, unloaded, springs up under it and pushes it for a few steps, less each step. How
+  // many depends on the trajectory's last bits: the box is still bouncing on the cloth when
+  // grabbed (it never comes to rest there: docs/solver.md). From when the push is under a
+  // tenth of the 1 % measured below (m · 0.03 g · h):
+  auto pushOnBox = [&] {
+    double impulse = 0.0;
+    for (const ContactReport& contact : world.contacts())
+      if (contact.rigid == box) impulse += contact.normalImpulse;
+    return impulse;
+  };
+  double push = INFINITY;
+  for (int touching = 0; push > 0.003 * kGravity * kStep; ++touching) {
+    ASSERT_LT(touching, 6) << "the cloth still pushes the box up: " << push << " N s";
+    ASSERT_TRUE(world.step(kStep).ok());
+    ASSERT_LT(pushOnBox(), 0.5 * push) << "the cloth's push on the box does not fade";
+    push = pushOnBox();
+  }
   const double clothBefore = world.nodePositions(hammock)[n * n / 2].y();
   const double heightBefore = world.rigidPosition(box).y();
   for (int step = 0; step < 15; ++step) {

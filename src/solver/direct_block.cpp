@@ -412,20 +412,22 @@ void DirectBlock::release(const std::vector<int32_t>& released) {
 }
 
 void DirectBlock::solveKkt(const Eigen::VectorXd& rhs, Eigen::VectorXd& z) const {
-  z = m_factor->solve(rhs);
+  z.resize(rhs.size());
+  solveWithFactor(rhs.data(), z.data(), 1);
   if (m_releasedRows.empty()) return;
   m_atReleased.resize(static_cast<Eigen::Index>(m_releasedRows.size()));
   for (size_t i = 0; i < m_releasedRows.size(); ++i) m_atReleased[static_cast<Eigen::Index>(i)] = -z[m_releasedRows[i]];
   z.noalias() += m_releasedColumns * m_releasedCoupling.solve(m_atReleased);
 }
 
-// Eigen's SimplicialLDLT::solve (x ← P x, L y = x, D⁻¹, Lᵀ, Pᵀ) with the same operations in the
-// same order for each column, so each comes out as solveKkt's to the bit; but row by row across
-// the columns, so each entry of the factor is read once for all of them, and a row of the
-// forward pass that is zero in every column (a unit or a contact's impulse touches a few) is
-// skipped, as Eigen skips it for one.
-void DirectBlock::solveKktColumns(ColumnBlock& x, bool withReleased) const {
-  const Eigen::Index size = x.rows();
+// The factorisation P A Pᵀ = L D Lᵀ solved as Eigen's SimplicialLDLT::solve does (x ← P x,
+// L y = x, D⁻¹, Lᵀ, Pᵀ), for `width` right-hand sides side by side (row-major), row by row
+// across them so that each entry of the factor is read once for all. A row of the forward pass
+// that is zero in every column (a unit or a contact's impulse touches a few) is skipped. The
+// backward pass sums each row's products in four interleaved partial sums: one running sum is a
+// chain of dependent multiply-adds, which made that pass, not memory, the solve's cost.
+void DirectBlock::solveWithFactor(const double* in, double* out, Eigen::Index width) const {
+  const auto size = static_cast<Eigen::Index>(m_factor->vectorD().size());
   const auto& permutation = m_factor->permutationP().indices();
   const auto& inverse = m_factor->permutationPinv().indices();
   const SparseMatrix& lower = m_factor->matrixL().nestedExpression();  // strictly lower, by columns
@@ -433,10 +435,9 @@ void DirectBlock::solveKktColumns(ColumnBlock& x, bool withReleased) const {
   const int* rowOf = lower.innerIndexPtr();
   const double* value = lower.valuePtr();
   const Eigen::VectorXd& diagonal = m_factor->vectorD();
-  const Eigen::Index width = x.cols();
-  m_permuted.resize(size, width);
-  for (Eigen::Index i = 0; i < size; ++i) m_permuted.row(permutation[i]) = x.row(i);
+  m_permuted.resize(size * width);
   double* const data = m_permuted.data();
+  for (Eigen::Index i = 0; i < size; ++i) std::copy_n(in + i * width, width, data + Eigen::Index{permutation[i]} * width);
   for (Eigen::Index i = 0; i < size; ++i) {
     const double* const xi = data + i * width;
     if (std::all_of(xi, xi + width, [](double v) { return v == 0.0; })) continue;
@@ -445,15 +446,42 @@ void DirectBlock::solveKktColumns(ColumnBlock& x, bool withReleased) const {
       for (Eigen::Index c = 0; c < width; ++c) xk[c] -= value[k] * xi[c];
     }
   }
-  for (Eigen::Index i = 0; i < size; ++i) m_permuted.row(i) *= 1.0 / diagonal[i];
+  for (Eigen::Index i = 0; i < size; ++i) {
+    const double inverseDiagonal = 1.0 / diagonal[i];
+    for (Eigen::Index c = 0; c < width; ++c) data[i * width + c] *= inverseDiagonal;
+  }
+  if (width == 1) {  // the same sums, held in registers
+    for (Eigen::Index i = size - 1; i >= 0; --i) {
+      double sum[4] = {0.0, 0.0, 0.0, 0.0};
+      int k = columnStart[i];
+      for (; k + 3 < columnStart[i + 1]; k += 4)
+        for (int j = 0; j < 4; ++j) sum[j] += value[k + j] * data[rowOf[k + j]];
+      for (int j = 0; k < columnStart[i + 1]; ++k, ++j) sum[j] += value[k] * data[rowOf[k]];
+      data[i] -= (sum[0] + sum[1]) + (sum[2] + sum[3]);
+    }
+    for (Eigen::Index i = 0; i < size; ++i) out[inverse[i]] = data[i];
+    return;
+  }
+  m_partialSums.resize(4 * width);
+  double* const sums = m_partialSums.data();
   for (Eigen::Index i = size - 1; i >= 0; --i) {
-    double* const xi = data + i * width;
+    std::fill_n(sums, 4 * width, 0.0);
     for (int k = columnStart[i]; k < columnStart[i + 1]; ++k) {
       const double* const xk = data + Eigen::Index{rowOf[k]} * width;
-      for (Eigen::Index c = 0; c < width; ++c) xi[c] -= value[k] * xk[c];
+      double* const sum = sums + ((k - columnStart[i]) & 3) * width;
+      for (Eigen::Index c = 0; c < width; ++c) sum[c] += value[k] * xk[c];
     }
+    double* const xi = data + i * width;
+    for (Eigen::Index c = 0; c < width; ++c)
+      xi[c] -= (sums[c] + sums[width + c]) + (sums[2 * width + c] + sums[3 * width + c]);
   }
-  for (Eigen::Index i = 0; i < size; ++i) x.row(inverse[i]) = m_permuted.row(i);
+  for (Eigen::Index i = 0; i < size; ++i) std::copy_n(data + i * width, width, out + Eigen::Index{inverse[i]} * width);
+}
+
+// The same for many right-hand sides at once, in place; each column comes out as solveKkt's to
+// the bit.
+void DirectBlock::solveKktColumns(ColumnBlock& x, bool withReleased) const {
+  solveWithFactor(x.data(), x.data(), x.cols());
   if (!withReleased || m_releasedRows.empty()) return;
   m_atReleased.resize(static_cast<Eigen::Index>(m_releasedRows.size()));
   for (Eigen::Index c = 0; c < x.cols(); ++c) {  // as solveKkt, a column at a time

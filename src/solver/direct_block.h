@@ -183,8 +183,8 @@ class DirectBlock {
   std::vector<int> m_analysedOuter, m_analysedInner;  // the pattern the ordering was computed for
   Eigen::VectorXd m_rhs, m_solution, m_refinement, m_residual;
   mutable Eigen::VectorXd m_atReleased;  // scratch of solveKkt
-  mutable ColumnBlock m_permuted;        // scratch of solveKktColumns
-  mutable Eigen::VectorXd m_column;      // scratch of solveKktColumns
+  mutable Eigen::VectorXd m_permuted, m_partialSums;  // scratch of solveWithFactor
+  mutable Eigen::VectorXd m_column;                    // scratch of solveKktColumns
   ColumnBlock m_columns;                 // right-hand sides of the friction responses and released rows
   Eigen::VectorXd m_velocityChange;    // scratch: of the block's degrees of freedom
   Eigen::VectorXd m_rowImpulseChange;  // scratch: Δλ of the block's rows
@@ -254,6 +254,8 @@ class DirectBlock {
   void refineWithKeptFactor(const Eigen::VectorXd& rhs, Eigen::VectorXd& z);
   double scaledNorm(const Eigen::VectorXd& v) const;  // max |v_i|, a degree of freedom's over H_ii
   void release(const std::vector<int32_t>& rows);
+  // out = F⁻¹ in for `width` right-hand sides stored row by row (in and out may be the same).
+  void solveWithFactor(const double* in, double* out, Eigen::Index width) const;
   // z = A⁻¹ rhs, with the released rows' equations dropped; z must not alias rhs.
   void solveKkt(const Eigen::VectorXd& rhs, Eigen::VectorXd& z) const;
   // The same for many right-hand sides at once, in place: the columns of `x` in, A⁻¹ of them out
