@@ -1,7 +1,9 @@
 // The step's working memory is kept between steps, so that stepping allocates nothing once it
-// has grown to the scene: every global operator new in this executable is counted. (Checked for
-// the models' stage, a whole step of a jelly resting on the ground and the paper's jelly scene;
-// what still allocates is in docs/architecture.md.)
+// has grown to the scene: every global operator new in this executable is counted, and every
+// malloc, calloc and realloc (Eigen's and Bullet's heap memory goes there directly) where the C
+// library is glibc and no sanitizer replaces them. (Checked for the models' stage, a whole step
+// of a jelly resting on the ground and the paper's jelly scene; what still allocates is in
+// docs/architecture.md.)
 #include "models/position_based.h"
 
 #include <tandem/mesh.h>
@@ -24,6 +26,34 @@ std::atomic<long> g_allocations{0};
 // The replacements pair malloc with free throughout; gcc cannot see that across inlining.
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+#endif
+
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(memory_sanitizer) || __has_feature(thread_sanitizer)
+#define TANDEM_SANITIZED_MALLOC 1
+#endif
+#endif
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#define TANDEM_SANITIZED_MALLOC 1
+#endif
+#if defined(__GLIBC__) && !defined(TANDEM_SANITIZED_MALLOC)
+extern "C" {
+void* __libc_malloc(std::size_t size);
+void* __libc_calloc(std::size_t count, std::size_t size);
+void* __libc_realloc(void* p, std::size_t size);
+void* malloc(std::size_t size) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  return __libc_malloc(size);
+}
+void* calloc(std::size_t count, std::size_t size) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  return __libc_calloc(count, size);
+}
+void* realloc(void* p, std::size_t size) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  return __libc_realloc(p, size);
+}
+}
 #endif
 
 void* operator new(std::size_t size) {

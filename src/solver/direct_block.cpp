@@ -13,7 +13,6 @@ constexpr double kRelativeCompliance = 1e-9;
 // Rounds of releasing pulling contacts per solve; each is solved again with a low-rank
 // correction, until this many contacts are let go since the last factorisation, then refactorised.
 constexpr int kMaxReleaseRounds = 3;
-constexpr Eigen::Index kLowRankReleases = 32;
 // h² K_g per edge is at most this multiple of its lighter node's mass.
 constexpr double kMaxStiffnessToMass = 100;
 // Contacts whose friction a block solves in its own metric (two KKT right-hand sides each per
@@ -190,7 +189,8 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
   for (size_t b = 0; b < m_bodies.size(); ++b) {
     if (m_bodyDof[b] < 0) continue;
     const int k = m_bodyMotion[b].freedoms;
-    const Eigen::MatrixXd mass = m_bodyMotion[b].inverseMass.topLeftCorner(k, k).inverse();  // Gᵀ 𝕄 G
+    const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6> mass =
+        m_bodyMotion[b].inverseMass.topLeftCorner(k, k).inverse();  // Gᵀ 𝕄 G
     for (int r = 0; r < k; ++r)
       for (int c = 0; c < k; ++c)
         if (mass(r, c) != 0.0) entries.emplace_back(m_bodyDof[b] + r, m_bodyDof[b] + c, mass(r, c));
@@ -341,6 +341,7 @@ void DirectBlock::factorise(bool mayKeep, bool reusable) {
   }
   m_factor->factorize(m_kkt);
   m_factorOk = m_factor->info() == Eigen::Success;
+  m_inverseDiagonal = m_factor->vectorD().cwiseInverse();  // vectorD() returns a copy
   m_factorFresh = true;
   m_factorReusable = reusable;
   ++m_factorisations;
@@ -398,26 +399,31 @@ void DirectBlock::release(const std::vector<int32_t>& released) {
     return;
   }
   const Eigen::Index size = m_dofCount + scalarRowCount();
-  m_releasedColumns.conservativeResize(size, count);
-  m_columns.setZero(size, static_cast<Eigen::Index>(released.size()));
-  for (size_t i = 0; i < released.size(); ++i) m_columns(m_dofCount + released[i], static_cast<Eigen::Index>(i)) = 1.0;
-  solveKktColumns(m_columns, false);
-  for (size_t i = 0; i < released.size(); ++i) {
-    m_releasedColumns.col(static_cast<Eigen::Index>(m_releasedRows.size())) = m_columns.col(static_cast<Eigen::Index>(i));
+  if (m_releasedColumns.rows() != size) m_releasedColumns.resize(size, kLowRankReleases);
+  const auto width = static_cast<Eigen::Index>(released.size());
+  m_releaseRhs.assign(static_cast<size_t>(size * width), 0.0);
+  for (Eigen::Index i = 0; i < width; ++i) m_releaseRhs[static_cast<size_t>((m_dofCount + released[i]) * width + i)] = 1.0;
+  solveWithFactor(m_releaseRhs.data(), m_releaseRhs.data(), width);
+  for (Eigen::Index i = 0; i < width; ++i) {
+    const auto column = static_cast<Eigen::Index>(m_releasedRows.size());
+    for (Eigen::Index k = 0; k < size; ++k) m_releasedColumns(k, column) = m_releaseRhs[static_cast<size_t>(k * width + i)];
     m_releasedRows.push_back(m_dofCount + released[i]);
   }
-  Eigen::MatrixXd coupling(count, count);
-  for (Eigen::Index i = 0; i < count; ++i) coupling.row(i) = m_releasedColumns.row(m_releasedRows[i]);
-  m_releasedCoupling.compute(coupling);
+  m_releasedCouplingMatrix.resize(count, count);
+  for (Eigen::Index i = 0; i < count; ++i)
+    m_releasedCouplingMatrix.row(i) = m_releasedColumns.row(m_releasedRows[i]).head(count);
+  m_releasedCoupling.compute(m_releasedCouplingMatrix);
 }
 
 void DirectBlock::solveKkt(const Eigen::VectorXd& rhs, Eigen::VectorXd& z) const {
   z.resize(rhs.size());
   solveWithFactor(rhs.data(), z.data(), 1);
   if (m_releasedRows.empty()) return;
-  m_atReleased.resize(static_cast<Eigen::Index>(m_releasedRows.size()));
-  for (size_t i = 0; i < m_releasedRows.size(); ++i) m_atReleased[static_cast<Eigen::Index>(i)] = -z[m_releasedRows[i]];
-  z.noalias() += m_releasedColumns * m_releasedCoupling.solve(m_atReleased);
+  const auto count = static_cast<Eigen::Index>(m_releasedRows.size());
+  m_atReleased.resize(count);
+  for (Eigen::Index i = 0; i < count; ++i) m_atReleased[i] = -z[m_releasedRows[static_cast<size_t>(i)]];
+  m_releasedMultipliers = m_releasedCoupling.solve(m_atReleased);
+  z.noalias() += m_releasedColumns.leftCols(count) * m_releasedMultipliers;
 }
 
 // The factorisation P A Pᵀ = L D Lᵀ solved as Eigen's SimplicialLDLT::solve does (x ← P x,
@@ -427,15 +433,14 @@ void DirectBlock::solveKkt(const Eigen::VectorXd& rhs, Eigen::VectorXd& z) const
 // backward pass sums each row's products in four interleaved partial sums: one running sum is a
 // chain of dependent multiply-adds, which made that pass, not memory, the solve's cost.
 void DirectBlock::solveWithFactor(const double* in, double* out, Eigen::Index width) const {
-  const auto size = static_cast<Eigen::Index>(m_factor->vectorD().size());
+  const Eigen::Index size = m_inverseDiagonal.size();
   const auto& permutation = m_factor->permutationP().indices();
   const auto& inverse = m_factor->permutationPinv().indices();
   const SparseMatrix& lower = m_factor->matrixL().nestedExpression();  // strictly lower, by columns
   const int* columnStart = lower.outerIndexPtr();
   const int* rowOf = lower.innerIndexPtr();
   const double* value = lower.valuePtr();
-  const Eigen::VectorXd& diagonal = m_factor->vectorD();
-  m_permuted.resize(size * width);
+  m_permuted.resize(static_cast<size_t>(size * width));
   double* const data = m_permuted.data();
   for (Eigen::Index i = 0; i < size; ++i) std::copy_n(in + i * width, width, data + Eigen::Index{permutation[i]} * width);
   for (Eigen::Index i = 0; i < size; ++i) {
@@ -446,10 +451,8 @@ void DirectBlock::solveWithFactor(const double* in, double* out, Eigen::Index wi
       for (Eigen::Index c = 0; c < width; ++c) xk[c] -= value[k] * xi[c];
     }
   }
-  for (Eigen::Index i = 0; i < size; ++i) {
-    const double inverseDiagonal = 1.0 / diagonal[i];
-    for (Eigen::Index c = 0; c < width; ++c) data[i * width + c] *= inverseDiagonal;
-  }
+  for (Eigen::Index i = 0; i < size; ++i)
+    for (Eigen::Index c = 0; c < width; ++c) data[i * width + c] *= m_inverseDiagonal[i];
   if (width == 1) {  // the same sums, held in registers
     for (Eigen::Index i = size - 1; i >= 0; --i) {
       double sum[4] = {0.0, 0.0, 0.0, 0.0};
@@ -462,7 +465,7 @@ void DirectBlock::solveWithFactor(const double* in, double* out, Eigen::Index wi
     for (Eigen::Index i = 0; i < size; ++i) out[inverse[i]] = data[i];
     return;
   }
-  m_partialSums.resize(4 * width);
+  m_partialSums.resize(static_cast<size_t>(4 * width));
   double* const sums = m_partialSums.data();
   for (Eigen::Index i = size - 1; i >= 0; --i) {
     std::fill_n(sums, 4 * width, 0.0);
@@ -483,11 +486,13 @@ void DirectBlock::solveWithFactor(const double* in, double* out, Eigen::Index wi
 void DirectBlock::solveKktColumns(ColumnBlock& x, bool withReleased) const {
   solveWithFactor(x.data(), x.data(), x.cols());
   if (!withReleased || m_releasedRows.empty()) return;
-  m_atReleased.resize(static_cast<Eigen::Index>(m_releasedRows.size()));
+  const auto count = static_cast<Eigen::Index>(m_releasedRows.size());
+  m_atReleased.resize(count);
   for (Eigen::Index c = 0; c < x.cols(); ++c) {  // as solveKkt, a column at a time
     m_column = x.col(c);
-    for (size_t i = 0; i < m_releasedRows.size(); ++i) m_atReleased[static_cast<Eigen::Index>(i)] = -m_column[m_releasedRows[i]];
-    m_column.noalias() += m_releasedColumns * m_releasedCoupling.solve(m_atReleased);
+    for (Eigen::Index i = 0; i < count; ++i) m_atReleased[i] = -m_column[m_releasedRows[static_cast<size_t>(i)]];
+    m_releasedMultipliers = m_releasedCoupling.solve(m_atReleased);
+    m_column.noalias() += m_releasedColumns.leftCols(count) * m_releasedMultipliers;
     x.col(c) = m_column;
   }
 }
@@ -572,7 +577,7 @@ void DirectBlock::solve(ConstraintRows& rows, SolverContext& ctx, SweepStats& st
     for (int32_t r = 0; r < rowCount; ++r)
       if (releasedHere[r]) prescribed[r] = -rows.contacts[m_rows[r].index].lambdaNormal;
     m_rhs.resize(m_dofCount + rowCount);
-    m_rhs.head(m_dofCount) = m_jacobianT * prescribed;
+    m_rhs.head(m_dofCount).noalias() = m_jacobianT * prescribed;
     for (int32_t r = 0; r < rowCount; ++r)
       m_rhs[m_dofCount + r] = m_active[r] && !m_released[r] ? -(rowVelocity(rows, m_rows[r], ctx) + m_bias[r]) : 0.0;
     // One step of iterative refinement: with this step's factorisation the first solve leaves
@@ -629,8 +634,10 @@ void DirectBlock::solve(ConstraintRows& rows, SolverContext& ctx, SweepStats& st
   // Velocities from the impulses, M Δv = Jᵀ Δλ − h² (K_g + K_e) Δv, with Δv in the stiffness
   // term taken from the solve: the stiffness forces cancel within each edge and element, so
   // momentum changes by exactly Jᵀ Δλ whatever the solve's rounding.
-  const auto deltaLambda = -m_solution.tail(rowCount);
-  m_velocityChange = m_jacobianT * deltaLambda - m_stiffness * m_solution.head(m_dofCount);
+  Eigen::VectorXd& deltaLambda = m_rowImpulseChange;
+  deltaLambda = -m_solution.tail(rowCount);
+  m_velocityChange.noalias() = m_jacobianT * deltaLambda;
+  m_velocityChange.noalias() -= m_stiffness * m_solution.head(m_dofCount);
   toVelocityChange(m_velocityChange);
   applyVelocityChange(m_velocityChange, ctx);
   addRowImpulses(rows, deltaLambda, ctx);

@@ -173,6 +173,7 @@ class DirectBlock {
   // Eigen's factorisations cannot move; the block can.
   std::unique_ptr<Eigen::SimplicialLDLT<SparseMatrix>> m_factor = std::make_unique<Eigen::SimplicialLDLT<SparseMatrix>>();
   bool m_factorOk = false;
+  Eigen::VectorXd m_inverseDiagonal;  // D⁻¹ of the factorisation
   // The factorisation is of this step's values (else of an earlier step's, with this pattern).
   bool m_factorFresh = false;
   // It was made by prepare(), with every row in: an earlier step's may be kept (a factorisation
@@ -182,10 +183,17 @@ class DirectBlock {
   bool m_residualChecked = false;  // this step's first solve measured a kept factorisation's error
   std::vector<int> m_analysedOuter, m_analysedInner;  // the pattern the ordering was computed for
   Eigen::VectorXd m_rhs, m_solution, m_refinement, m_residual;
-  mutable Eigen::VectorXd m_atReleased;  // scratch of solveKkt
-  mutable Eigen::VectorXd m_permuted, m_partialSums;  // scratch of solveWithFactor
+  // The low-rank correction for the rows let go since the last factorisation (release()), in
+  // storage of at most kLowRankReleases, so that it never allocates.
+  static constexpr Eigen::Index kLowRankReleases = 32;
+  using ReleasedVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kLowRankReleases, 1>;
+  using ReleasedMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kLowRankReleases, kLowRankReleases>;
+  mutable ReleasedVector m_atReleased, m_releasedMultipliers;  // scratch of solveKkt
+  // Scratch of solveWithFactor, for one right-hand side or many in turn: a std::vector keeps its
+  // capacity when it shrinks, where an Eigen vector would allocate again.
+  mutable std::vector<double> m_permuted, m_partialSums;
   mutable Eigen::VectorXd m_column;                    // scratch of solveKktColumns
-  ColumnBlock m_columns;                 // right-hand sides of the friction responses and released rows
+  ColumnBlock m_columns;                 // right-hand sides of the friction responses
   Eigen::VectorXd m_velocityChange;    // scratch: of the block's degrees of freedom
   Eigen::VectorXd m_rowImpulseChange;  // scratch: Δλ of the block's rows
   SparseMatrix m_jacobianT;         // Jᵀ: dofs × rows
@@ -217,8 +225,10 @@ class DirectBlock {
   Eigen::VectorXd m_prescribed;         // scratch of solve(): their Δλ = −λ so far
   std::vector<int32_t> m_releasedNow;   // scratch of solve(): let go in this round
   std::vector<Eigen::Index> m_releasedRows;  // KKT rows let go since the last factorisation
-  Eigen::MatrixXd m_releasedColumns;         // A⁻¹ e_r for each of them
-  Eigen::PartialPivLU<Eigen::MatrixXd> m_releasedCoupling;  // of those columns' released rows
+  Eigen::MatrixXd m_releasedColumns;  // A⁻¹ e_r for each of them: its first m_releasedRows.size() columns
+  ReleasedMatrix m_releasedCouplingMatrix;                 // those columns' released rows
+  Eigen::PartialPivLU<ReleasedMatrix> m_releasedCoupling;  // and its factorisation
+  std::vector<double> m_releaseRhs;  // scratch of release(): the unit right-hand sides, row by row
 
   // Per contact with friction in the block (its row index r), per tangent (columns `column` and
   // `column` + 1 of the matrices below): the velocity change of the block's degrees of freedom
