@@ -430,8 +430,9 @@ void DirectBlock::solveKkt(const Eigen::VectorXd& rhs, Eigen::VectorXd& z) const
 // L y = x, D⁻¹, Lᵀ, Pᵀ), for `width` right-hand sides side by side (row-major), row by row
 // across them so that each entry of the factor is read once for all. A row of the forward pass
 // that is zero in every column (a unit or a contact's impulse touches a few) is skipped. The
-// backward pass sums each row's products in four interleaved partial sums: one running sum is a
-// chain of dependent multiply-adds, which made that pass, not memory, the solve's cost.
+// backward pass sums each row's products in four interleaved partial sums, held in registers:
+// one running sum is a chain of dependent adds, which made that pass, not memory, the solve's
+// cost.
 void DirectBlock::solveWithFactor(const double* in, double* out, Eigen::Index width) const {
   const Eigen::Index size = m_inverseDiagonal.size();
   const auto& permutation = m_factor->permutationP().indices();
@@ -453,30 +454,34 @@ void DirectBlock::solveWithFactor(const double* in, double* out, Eigen::Index wi
   }
   for (Eigen::Index i = 0; i < size; ++i)
     for (Eigen::Index c = 0; c < width; ++c) data[i * width + c] *= m_inverseDiagonal[i];
-  if (width == 1) {  // the same sums, held in registers
-    for (Eigen::Index i = size - 1; i >= 0; --i) {
-      double sum[4] = {0.0, 0.0, 0.0, 0.0};
-      int k = columnStart[i];
-      for (; k + 3 < columnStart[i + 1]; k += 4)
-        for (int j = 0; j < 4; ++j) sum[j] += value[k + j] * data[rowOf[k + j]];
-      for (int j = 0; k < columnStart[i + 1]; ++k, ++j) sum[j] += value[k] * data[rowOf[k]];
-      data[i] -= (sum[0] + sum[1]) + (sum[2] + sum[3]);
-    }
-    for (Eigen::Index i = 0; i < size; ++i) out[inverse[i]] = data[i];
-    return;
-  }
-  m_partialSums.resize(static_cast<size_t>(4 * width));
-  double* const sums = m_partialSums.data();
+  // Backward: four columns at a time, each with its four partial sums in registers, then the
+  // columns left one at a time; every column sums its products in the same order either way.
   for (Eigen::Index i = size - 1; i >= 0; --i) {
-    std::fill_n(sums, 4 * width, 0.0);
-    for (int k = columnStart[i]; k < columnStart[i + 1]; ++k) {
-      const double* const xk = data + Eigen::Index{rowOf[k]} * width;
-      double* const sum = sums + ((k - columnStart[i]) & 3) * width;
-      for (Eigen::Index c = 0; c < width; ++c) sum[c] += value[k] * xk[c];
-    }
     double* const xi = data + i * width;
-    for (Eigen::Index c = 0; c < width; ++c)
-      xi[c] -= (sums[c] + sums[width + c]) + (sums[2 * width + c] + sums[3 * width + c]);
+    const int first = columnStart[i], last = columnStart[i + 1];
+    Eigen::Index c = 0;
+    for (; c + 4 <= width; c += 4) {
+      double sum[4][4] = {};  // [partial sum][column]
+      int k = first;
+      for (; k + 3 < last; k += 4)
+        for (int j = 0; j < 4; ++j) {
+          const double* const xk = data + Eigen::Index{rowOf[k + j]} * width + c;
+          for (int q = 0; q < 4; ++q) sum[j][q] += value[k + j] * xk[q];
+        }
+      for (int j = 0; k < last; ++k, ++j) {
+        const double* const xk = data + Eigen::Index{rowOf[k]} * width + c;
+        for (int q = 0; q < 4; ++q) sum[j][q] += value[k] * xk[q];
+      }
+      for (int q = 0; q < 4; ++q) xi[c + q] -= (sum[0][q] + sum[1][q]) + (sum[2][q] + sum[3][q]);
+    }
+    for (; c < width; ++c) {
+      double sum[4] = {};
+      int k = first;
+      for (; k + 3 < last; k += 4)
+        for (int j = 0; j < 4; ++j) sum[j] += value[k + j] * data[Eigen::Index{rowOf[k + j]} * width + c];
+      for (int j = 0; k < last; ++k, ++j) sum[j] += value[k] * data[Eigen::Index{rowOf[k]} * width + c];
+      xi[c] -= (sum[0] + sum[1]) + (sum[2] + sum[3]);
+    }
   }
   for (Eigen::Index i = 0; i < size; ++i) std::copy_n(data + i * width, width, out + Eigen::Index{inverse[i]} * width);
 }
