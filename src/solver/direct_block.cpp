@@ -418,6 +418,11 @@ void DirectBlock::release(const std::vector<int32_t>& released) {
 void DirectBlock::solveKkt(const Eigen::VectorXd& rhs, Eigen::VectorXd& z) const {
   z.resize(rhs.size());
   solveWithFactor(rhs.data(), z.data(), 1);
+  dropReleasedEquations(z);
+}
+
+// z + C μ with C_RR μ = −z_R: the released rows' equations dropped (see release()).
+void DirectBlock::dropReleasedEquations(Eigen::VectorXd& z) const {
   if (m_releasedRows.empty()) return;
   const auto count = static_cast<Eigen::Index>(m_releasedRows.size());
   m_atReleased.resize(count);
@@ -491,13 +496,9 @@ void DirectBlock::solveWithFactor(const double* in, double* out, Eigen::Index wi
 void DirectBlock::solveKktColumns(ColumnBlock& x, bool withReleased) const {
   solveWithFactor(x.data(), x.data(), x.cols());
   if (!withReleased || m_releasedRows.empty()) return;
-  const auto count = static_cast<Eigen::Index>(m_releasedRows.size());
-  m_atReleased.resize(count);
   for (Eigen::Index c = 0; c < x.cols(); ++c) {  // as solveKkt, a column at a time
     m_column = x.col(c);
-    for (Eigen::Index i = 0; i < count; ++i) m_atReleased[i] = -m_column[m_releasedRows[static_cast<size_t>(i)]];
-    m_releasedMultipliers = m_releasedCoupling.solve(m_atReleased);
-    m_column.noalias() += m_releasedColumns.leftCols(count) * m_releasedMultipliers;
+    dropReleasedEquations(m_column);
     x.col(c) = m_column;
   }
 }

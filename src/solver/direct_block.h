@@ -266,6 +266,8 @@ class DirectBlock {
   void release(const std::vector<int32_t>& rows);
   // out = F⁻¹ in for `width` right-hand sides stored row by row (in and out may be the same).
   void solveWithFactor(const double* in, double* out, Eigen::Index width) const;
+  // z, solved with the factorisation, corrected to have the released rows' equations dropped.
+  void dropReleasedEquations(Eigen::VectorXd& z) const;
   // z = A⁻¹ rhs, with the released rows' equations dropped; z must not alias rhs.
   void solveKkt(const Eigen::VectorXd& rhs, Eigen::VectorXd& z) const;
   // The same for many right-hand sides at once, in place: the columns of `x` in, A⁻¹ of them out
