@@ -24,6 +24,18 @@ constexpr double kKeptFactorTolerance = 1e-4;
 
 bool isUnbounded(double maxForce) { return std::isinf(maxForce); }
 
+// Σ_k L_ki x_k over the strictly lower column [first, last) of L, for one right-hand side, in
+// four interleaved partial sums (DirectBlock::solveWithFactor): one running sum is a chain of
+// dependent adds.
+double backwardSum(const double* value, const int* rowOf, int first, int last, const double* x) {
+  double sum[4] = {};
+  int k = first;
+  for (; k + 3 < last; k += 4)
+    for (int j = 0; j < 4; ++j) sum[j] += value[k + j] * x[rowOf[k + j]];
+  for (int j = 0; k < last; ++k, ++j) sum[j] += value[k] * x[rowOf[k]];
+  return (sum[0] + sum[1]) + (sum[2] + sum[3]);
+}
+
 }  // namespace
 
 DirectBlock::DirectBlock(std::vector<NodeRange> ranges) : m_ranges(std::move(ranges)) {
@@ -435,9 +447,8 @@ void DirectBlock::dropReleasedEquations(Eigen::VectorXd& z) const {
 // L y = x, D⁻¹, Lᵀ, Pᵀ), for `width` right-hand sides side by side (row-major), row by row
 // across them so that each entry of the factor is read once for all. A row of the forward pass
 // that is zero in every column (a unit or a contact's impulse touches a few) is skipped. The
-// backward pass sums each row's products in four interleaved partial sums, held in registers:
-// one running sum is a chain of dependent adds, which made that pass, not memory, the solve's
-// cost.
+// backward pass sums each row's products in four interleaved partial sums: one running sum is a
+// chain of dependent adds, which made that pass, not memory, the solve's cost.
 void DirectBlock::solveWithFactor(const double* in, double* out, Eigen::Index width) const {
   const Eigen::Index size = m_inverseDiagonal.size();
   const auto& permutation = m_factor->permutationP().indices();
@@ -459,33 +470,26 @@ void DirectBlock::solveWithFactor(const double* in, double* out, Eigen::Index wi
   }
   for (Eigen::Index i = 0; i < size; ++i)
     for (Eigen::Index c = 0; c < width; ++c) data[i * width + c] *= m_inverseDiagonal[i];
-  // Backward: four columns at a time, each with its four partial sums in registers, then the
-  // columns left one at a time; every column sums its products in the same order either way.
-  for (Eigen::Index i = size - 1; i >= 0; --i) {
-    double* const xi = data + i * width;
-    const int first = columnStart[i], last = columnStart[i + 1];
-    Eigen::Index c = 0;
-    for (; c + 4 <= width; c += 4) {
-      double sum[4][4] = {};  // [partial sum][column]
-      int k = first;
-      for (; k + 3 < last; k += 4)
-        for (int j = 0; j < 4; ++j) {
-          const double* const xk = data + Eigen::Index{rowOf[k + j]} * width + c;
-          for (int q = 0; q < 4; ++q) sum[j][q] += value[k + j] * xk[q];
-        }
-      for (int j = 0; k < last; ++k, ++j) {
-        const double* const xk = data + Eigen::Index{rowOf[k]} * width + c;
-        for (int q = 0; q < 4; ++q) sum[j][q] += value[k] * xk[q];
+  // Backward. One right-hand side: its four partial sums in registers. Many: one pass over each
+  // row's entries for all of them, the four partial sums per column in memory (a pass per group
+  // of columns read the factor again for each group and was slower on the rope's wide blocks).
+  // Every column sums its products in the same order either way.
+  if (width == 1) {
+    for (Eigen::Index i = size - 1; i >= 0; --i)
+      data[i] -= backwardSum(value, rowOf, columnStart[i], columnStart[i + 1], data);
+  } else {
+    m_partialSums.resize(static_cast<size_t>(4 * width));
+    double* const sums = m_partialSums.data();
+    for (Eigen::Index i = size - 1; i >= 0; --i) {
+      std::fill_n(sums, 4 * width, 0.0);
+      for (int k = columnStart[i]; k < columnStart[i + 1]; ++k) {
+        const double* const xk = data + Eigen::Index{rowOf[k]} * width;
+        double* const sum = sums + ((k - columnStart[i]) & 3) * width;
+        for (Eigen::Index c = 0; c < width; ++c) sum[c] += value[k] * xk[c];
       }
-      for (int q = 0; q < 4; ++q) xi[c + q] -= (sum[0][q] + sum[1][q]) + (sum[2][q] + sum[3][q]);
-    }
-    for (; c < width; ++c) {
-      double sum[4] = {};
-      int k = first;
-      for (; k + 3 < last; k += 4)
-        for (int j = 0; j < 4; ++j) sum[j] += value[k + j] * data[Eigen::Index{rowOf[k + j]} * width + c];
-      for (int j = 0; k < last; ++k, ++j) sum[j] += value[k] * data[Eigen::Index{rowOf[k]} * width + c];
-      xi[c] -= (sum[0] + sum[1]) + (sum[2] + sum[3]);
+      double* const xi = data + i * width;
+      for (Eigen::Index c = 0; c < width; ++c)
+        xi[c] -= (sums[c] + sums[width + c]) + (sums[2 * width + c] + sums[3 * width + c]);
     }
   }
   for (Eigen::Index i = 0; i < size; ++i) std::copy_n(data + i * width, width, out + Eigen::Index{inverse[i]} * width);

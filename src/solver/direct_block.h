@@ -191,7 +191,7 @@ class DirectBlock {
   mutable ReleasedVector m_atReleased, m_releasedMultipliers;  // scratch of solveKkt
   // Scratch of solveWithFactor, for one right-hand side or many in turn: a std::vector keeps its
   // capacity when it shrinks, where an Eigen vector would allocate again.
-  mutable std::vector<double> m_permuted;
+  mutable std::vector<double> m_permuted, m_partialSums;
   mutable Eigen::VectorXd m_column;                    // scratch of solveKktColumns
   ColumnBlock m_columns;                 // right-hand sides of the friction responses
   Eigen::VectorXd m_velocityChange;    // scratch: of the block's degrees of freedom
