@@ -248,13 +248,7 @@ struct Detector {
       bounds[s].min().array() -= pad;
       bounds[s].max().array() += pad;
     }
-    meets.assign(count * count, 0);
-    for (size_t a = 0; a < count; ++a)
-      for (size_t b = 0; b < count; ++b)
-        meets[a * count + b] = a == b ? surfaces[a].selfCollision
-                                      : bounds[a].intersects(bounds[b]) &&
-                                            collisionGroupsMeet(surfaces[a].group, surfaces[a].mask,
-                                                                surfaces[b].group, surfaces[b].mask);
+    tandem::findMeetingSurfaces(surfaces, bounds, meets);
   }
 
   // Whether any surface can touch the features (faces, edges) of surface s.
@@ -414,6 +408,18 @@ struct Detector {
 };
 
 }  // namespace
+
+void findMeetingSurfaces(std::span<const CollisionSurface> surfaces, std::span<const Eigen::AlignedBox3d> bounds,
+                         std::vector<char>& meets) {
+  const size_t count = surfaces.size();
+  meets.assign(count * count, 0);
+  for (size_t a = 0; a < count; ++a)
+    for (size_t b = 0; b < count; ++b)
+      meets[a * count + b] = a == b ? surfaces[a].selfCollision
+                                    : bounds[a].intersects(bounds[b]) &&
+                                          collisionGroupsMeet(surfaces[a].group, surfaces[a].mask, surfaces[b].group,
+                                                              surfaces[b].mask);
+}
 
 uint64_t nodeBodyKey(int32_t node, int32_t body) {
   return (static_cast<uint64_t>(static_cast<uint32_t>(node)) << 32) | static_cast<uint32_t>(body);

@@ -58,6 +58,13 @@ struct CollisionRigid {
 // A node anchored to a rigid body does not collide with it (nor do faces around the node).
 uint64_t nodeBodyKey(int32_t node, int32_t body);
 
+// Which surfaces may touch which, given a box around each: meets[a * count + b] is set for a
+// surface with itself when it self-collides, and for two whose boxes overlap and whose
+// collision filters let them meet. (Contact detection passes boxes padded by the step's reach,
+// the impact zones the boxes their nodes swept.)
+void findMeetingSurfaces(std::span<const CollisionSurface> surfaces, std::span<const Eigen::AlignedBox3d> bounds,
+                         std::vector<char>& meets);
+
 // Working memory of detectContacts, kept by the caller between steps so that finding contacts
 // with rigid shapes allocates nothing once grown.
 struct ContactDetectionScratch {

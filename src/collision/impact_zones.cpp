@@ -56,13 +56,7 @@ struct Separator {
     std::vector<Eigen::AlignedBox3d>& bounds = scratch.bounds;
     bounds.resize(count);
     for (size_t s = 0; s < count; ++s) bounds[s] = sweptBox(surfaces[s].nodes);
-    meets.assign(count * count, 0);
-    for (size_t a = 0; a < count; ++a)
-      for (size_t b = 0; b < count; ++b)
-        meets[a * count + b] = a == b ? surfaces[a].selfCollision
-                                      : bounds[a].intersects(bounds[b]) &&
-                                            collisionGroupsMeet(surfaces[a].group, surfaces[a].mask,
-                                                                surfaces[b].group, surfaces[b].mask);
+    tandem::findMeetingSurfaces(surfaces, bounds, meets);
   }
 
   bool involved(size_t s) const {
