@@ -124,9 +124,10 @@ void World::Impl::afterSetup() {
   bullet.storeRigidVelocities(rigid);
 }
 
-void World::Impl::afterIteration(int) {
+void World::Impl::afterIteration(int iteration) {
   bullet.loadRigidVelocities(rigid);
   SolverContext ctx = context();
+  ctx.iteration = iteration;
   SweepStats stats;
   rows.sweep(ctx, settings.solver.friction, stats);
   for (DirectBlock& block : directBlocks) {

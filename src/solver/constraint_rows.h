@@ -12,6 +12,7 @@
 #include "constraints/inextensibility.h"
 #include "solver/graph_colouring.h"
 #include "solver/solver_state.h"
+#include "solver/swept_edge_solve.h"
 
 #include <vector>
 
@@ -110,12 +111,14 @@ struct ConstraintRows {
   }
 
   // One projected Gauss-Seidel sweep over every row not in a direct block (each swept edge with
-  // its geometric stiffness, constraints/inextensibility.h).
+  // its geometric stiffness, constraints/inextensibility.h), the swept equality edges solved
+  // together first in a (sub)step's first sweeps (solver/swept_edge_solve.h).
   void sweep(SolverContext& ctx, FrictionModel friction, SweepStats& stats) {
     for (GrabRow& row : grabs)
       if (row.active) solveGrab(row, ctx, stats);
     for (FixedPointRow& row : fixedPoints)
       if (!row.inDirectBlock) solveFixedPoint(row, ctx, stats);
+    if (ctx.iteration < kEdgeSolveSweeps) solveSweptEdgesTogether(inextensibility, sweptEdges, ctx, m_sweptEdgeSolve);
     for (int32_t r : sweptEdges) {
       InextensibilityRow& row = inextensibility[static_cast<size_t>(r)];
       solveInextensibility(row, ctx, stats);
@@ -140,6 +143,7 @@ struct ConstraintRows {
   }
 
  private:
+  SweptEdgeSolveScratch m_sweptEdgeSolve;
   ColouringScratch m_colouring;
   std::vector<int32_t> m_contactOrder;
   std::vector<ContactRow> m_sortedContacts;

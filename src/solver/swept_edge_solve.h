@@ -1,0 +1,121 @@
+// The swept edges solved together: preconditioned conjugate gradients over a step's first
+// sweeps, before the Gauss-Seidel pass over the same rows.
+//
+// Why. The inextensible edges no direct block holds (a cloth of thousands of rows) are swept by
+// projected Gauss-Seidel, which carries a correction about one edge per sweep: a 51 × 51 cloth
+// hanging over a sphere is 25 edges from its support to its hem, so after K = 4 sweeps its
+// skirt still falls about 4 % further than its edges allow, every step, and the strain-limiting
+// passes take that off by position (100–400 of them a step while it drapes; docs/solver.md,
+// fifteenth session), feeding the difference back as velocity: a curtain hanging straight from
+// rest moved at 0.04 m/s RMS. Over-relaxing the sweep carried corrections further but left a
+// hanging curtain three times as agitated (its overshoot is what the next sweeps must smooth).
+//
+// What. The swept edge rows that are bilateral and unbounded (both sides of the row limited,
+// no force bound: a plain equality) are one linear system in their impulses,
+//
+//   A Δλ = r,   A = J W Jᵀ (W = M⁻¹ of the nodes),   rᵢ = −(Jᵢ v + bᵢ),
+//
+// symmetric and positive semi-definite (definite unless rows are redundant, where conjugate
+// gradients still converge in the range of A). In the first kEdgeSolveSweeps sweeps of each
+// (sub)step, kEdgeSolveIterations steps of conjugate gradients with the Jacobi preconditioner
+// (A's diagonal is each row's K = wᵢ + wⱼ, whose inverse the row keeps as its effective mass)
+// solve it from Δλ = 0 against the velocities as the sweep finds them, each iteration one pass
+// over the rows (Jᵀ p onto the nodes, then J back); then λ += Δλ and v += W Jᵀ Δλ. Conjugate
+// gradients reduce the error in A's energy norm monotonically, over the whole sheet at once
+// (the error after k steps is bounded by a Chebyshev polynomial in A's condition number), so
+// they do not overshoot as over-relaxation does; the Gauss-Seidel pass that follows in the same
+// sweep (with each edge's geometric stiffness) smooths what they leave and takes the bounded
+// and one-sided rows. Every impulse is internal (Σ Jᵀ Δλ = 0 over an edge), so momentum is kept.
+//
+// Measured (`build/bench/gauntlet_study 2:1 4:1`, `tandem run scenes/cloth_sphere.json`): the
+// draped 51 × 51 cloth takes 5,500 strain-limiting passes in its first 100 steps instead of
+// 12,200, and costs 6.0 instead of 8.5 ms per step; the 101 × 101 cloth 55 instead of 103 ms,
+// its worst stretch after contact 6.8 % instead of 10.4 % (201 × 201: 25 % instead of 46 %); a
+// 31 × 31 curtain pinned along its top edge hangs still (3·10⁻⁶ m/s RMS over its second and third
+// second, against 0.038; World.SweptCurtainHangsStill). Ten iterations in the first two sweeps:
+// ten in every sweep cost more for fewer passes (7.9 against 7.0 ms over the first 100 steps),
+// twenty in the first only as much for more (7.8 ms), five in each of four left the curtain
+// moving at 5·10⁻⁴ m/s.
+#pragma once
+
+#include "constraints/inextensibility.h"
+#include "solver/solver_state.h"
+
+#include <cmath>
+#include <span>
+#include <vector>
+
+namespace tandem {
+
+inline constexpr int kEdgeSolveSweeps = 2;       // the first sweeps of a (sub)step that run it
+inline constexpr int kEdgeSolveIterations = 10;  // conjugate-gradient steps in each
+inline constexpr double kEdgeSolveTolerance = 1e-4;  // stop early when |r| falls by this factor
+
+// Working memory, kept between steps so that the solve allocates nothing once grown.
+struct SweptEdgeSolveScratch {
+  std::vector<int32_t> rows;                  // the equality rows among the swept edges
+  std::vector<double> residual, preconditioned, direction, product, impulse;  // per row
+  std::vector<Vec3> onNodes;                  // W Jᵀ of a row vector, per node
+};
+
+inline void solveSweptEdgesTogether(std::span<InextensibilityRow> edges, std::span<const int32_t> swept,
+                                    SolverContext& ctx, SweptEdgeSolveScratch& s) {
+  s.rows.clear();
+  for (int32_t e : swept) {
+    const InextensibilityRow& row = edges[static_cast<size_t>(e)];
+    if (row.effectiveMass != 0.0 && std::isinf(row.stepLambdaMin) && std::isinf(row.stepLambdaMax)) s.rows.push_back(e);
+  }
+  const size_t n = s.rows.size();
+  if (n == 0) return;
+  auto row = [&](size_t i) -> const InextensibilityRow& { return edges[static_cast<size_t>(s.rows[i])]; };
+  s.residual.resize(n);
+  s.preconditioned.resize(n);
+  s.direction.resize(n);
+  s.product.resize(n);
+  s.impulse.assign(n, 0.0);
+  if (s.onNodes.size() < ctx.velocity.size()) s.onNodes.resize(ctx.velocity.size());
+  // out = J W Jᵀ x over the rows.
+  auto multiply = [&](const std::vector<double>& x, std::vector<double>& out) {
+    for (size_t i = 0; i < n; ++i) s.onNodes[row(i).node[0]] = s.onNodes[row(i).node[1]] = Vec3::Zero();
+    for (size_t i = 0; i < n; ++i)
+      for (int k = 0; k < 2; ++k)
+        s.onNodes[row(i).node[k]] += (x[i] * ctx.inverseMass[row(i).node[k]]) * row(i).jacobian[k];
+    for (size_t i = 0; i < n; ++i)
+      out[i] = row(i).jacobian[0].dot(s.onNodes[row(i).node[0]]) + row(i).jacobian[1].dot(s.onNodes[row(i).node[1]]);
+  };
+  double rz = 0.0, start = 0.0;
+  for (size_t i = 0; i < n; ++i) {
+    const InextensibilityRow& r = row(i);
+    s.residual[i] = -(r.bias + r.jacobian[0].dot(ctx.velocity[r.node[0]]) + r.jacobian[1].dot(ctx.velocity[r.node[1]]));
+    s.preconditioned[i] = r.effectiveMass * s.residual[i];
+    s.direction[i] = s.preconditioned[i];
+    rz += s.residual[i] * s.preconditioned[i];
+    start += s.residual[i] * s.residual[i];
+  }
+  for (int iteration = 0; iteration < kEdgeSolveIterations && rz > 0.0; ++iteration) {
+    multiply(s.direction, s.product);
+    double curvature = 0.0;
+    for (size_t i = 0; i < n; ++i) curvature += s.direction[i] * s.product[i];
+    if (curvature <= 0.0) break;  // a direction in A's null space: nothing left to solve there
+    const double alpha = rz / curvature;
+    double next = 0.0, left = 0.0;
+    for (size_t i = 0; i < n; ++i) {
+      s.impulse[i] += alpha * s.direction[i];
+      s.residual[i] -= alpha * s.product[i];
+      s.preconditioned[i] = row(i).effectiveMass * s.residual[i];
+      next += s.residual[i] * s.preconditioned[i];
+      left += s.residual[i] * s.residual[i];
+    }
+    if (left <= kEdgeSolveTolerance * kEdgeSolveTolerance * start) break;
+    const double beta = next / rz;
+    rz = next;
+    for (size_t i = 0; i < n; ++i) s.direction[i] = s.preconditioned[i] + beta * s.direction[i];
+  }
+  for (size_t i = 0; i < n; ++i) {
+    InextensibilityRow& r = edges[static_cast<size_t>(s.rows[i])];
+    r.lambda += s.impulse[i];
+    for (int k = 0; k < 2; ++k) ctx.velocity[r.node[k]] += (s.impulse[i] * ctx.inverseMass[r.node[k]]) * r.jacobian[k];
+  }
+}
+
+}  // namespace tandem
