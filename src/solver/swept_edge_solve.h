@@ -53,21 +53,34 @@ inline constexpr double kEdgeSolveTolerance = 1e-4;  // stop early when |r| fall
 
 // Working memory, kept between steps so that the solve allocates nothing once grown.
 struct SweptEdgeSolveScratch {
-  std::vector<int32_t> rows;                  // the equality rows among the swept edges
+  // The equality rows among the swept edges, as the iterations read them: row index, nodes,
+  // direction n (J = [−nᵀ nᵀ]), the nodes' inverse masses and the row's effective mass.
+  struct Edge {
+    int32_t row;
+    int32_t node[2];
+    Vec3 n;
+    double inverseMass[2];
+    double effectiveMass;
+  };
+  std::vector<Edge> edges;
   std::vector<double> residual, preconditioned, direction, product, impulse;  // per row
-  std::vector<Vec3> onNodes;                  // W Jᵀ of a row vector, per node
+  std::vector<Vec3> onNodes;  // W Jᵀ of a row vector, per node
 };
 
-inline void solveSweptEdgesTogether(std::span<InextensibilityRow> edges, std::span<const int32_t> swept,
+inline void solveSweptEdgesTogether(std::span<InextensibilityRow> rows, std::span<const int32_t> swept,
                                     SolverContext& ctx, SweptEdgeSolveScratch& s) {
-  s.rows.clear();
+  s.edges.clear();
   for (int32_t e : swept) {
-    const InextensibilityRow& row = edges[static_cast<size_t>(e)];
-    if (row.effectiveMass != 0.0 && std::isinf(row.stepLambdaMin) && std::isinf(row.stepLambdaMax)) s.rows.push_back(e);
+    const InextensibilityRow& row = rows[static_cast<size_t>(e)];
+    if (row.effectiveMass == 0.0 || !std::isinf(row.stepLambdaMin) || !std::isinf(row.stepLambdaMax)) continue;
+    s.edges.push_back({e,
+                       {row.node[0], row.node[1]},
+                       row.jacobian[1],
+                       {ctx.inverseMass[row.node[0]], ctx.inverseMass[row.node[1]]},
+                       row.effectiveMass});
   }
-  const size_t n = s.rows.size();
+  const size_t n = s.edges.size();
   if (n == 0) return;
-  auto row = [&](size_t i) -> const InextensibilityRow& { return edges[static_cast<size_t>(s.rows[i])]; };
   s.residual.resize(n);
   s.preconditioned.resize(n);
   s.direction.resize(n);
@@ -76,18 +89,22 @@ inline void solveSweptEdgesTogether(std::span<InextensibilityRow> edges, std::sp
   if (s.onNodes.size() < ctx.velocity.size()) s.onNodes.resize(ctx.velocity.size());
   // out = J W Jᵀ x over the rows.
   auto multiply = [&](const std::vector<double>& x, std::vector<double>& out) {
-    for (size_t i = 0; i < n; ++i) s.onNodes[row(i).node[0]] = s.onNodes[row(i).node[1]] = Vec3::Zero();
-    for (size_t i = 0; i < n; ++i)
-      for (int k = 0; k < 2; ++k)
-        s.onNodes[row(i).node[k]] += (x[i] * ctx.inverseMass[row(i).node[k]]) * row(i).jacobian[k];
-    for (size_t i = 0; i < n; ++i)
-      out[i] = row(i).jacobian[0].dot(s.onNodes[row(i).node[0]]) + row(i).jacobian[1].dot(s.onNodes[row(i).node[1]]);
+    for (const SweptEdgeSolveScratch::Edge& e : s.edges) s.onNodes[e.node[0]] = s.onNodes[e.node[1]] = Vec3::Zero();
+    for (size_t i = 0; i < n; ++i) {
+      const SweptEdgeSolveScratch::Edge& e = s.edges[i];
+      s.onNodes[e.node[0]] -= (x[i] * e.inverseMass[0]) * e.n;
+      s.onNodes[e.node[1]] += (x[i] * e.inverseMass[1]) * e.n;
+    }
+    for (size_t i = 0; i < n; ++i) {
+      const SweptEdgeSolveScratch::Edge& e = s.edges[i];
+      out[i] = e.n.dot(s.onNodes[e.node[1]] - s.onNodes[e.node[0]]);
+    }
   };
   double rz = 0.0, start = 0.0;
   for (size_t i = 0; i < n; ++i) {
-    const InextensibilityRow& r = row(i);
-    s.residual[i] = -(r.bias + r.jacobian[0].dot(ctx.velocity[r.node[0]]) + r.jacobian[1].dot(ctx.velocity[r.node[1]]));
-    s.preconditioned[i] = r.effectiveMass * s.residual[i];
+    const SweptEdgeSolveScratch::Edge& e = s.edges[i];
+    s.residual[i] = -(rows[static_cast<size_t>(e.row)].bias + e.n.dot(ctx.velocity[e.node[1]] - ctx.velocity[e.node[0]]));
+    s.preconditioned[i] = e.effectiveMass * s.residual[i];
     s.direction[i] = s.preconditioned[i];
     rz += s.residual[i] * s.preconditioned[i];
     start += s.residual[i] * s.residual[i];
@@ -102,7 +119,7 @@ inline void solveSweptEdgesTogether(std::span<InextensibilityRow> edges, std::sp
     for (size_t i = 0; i < n; ++i) {
       s.impulse[i] += alpha * s.direction[i];
       s.residual[i] -= alpha * s.product[i];
-      s.preconditioned[i] = row(i).effectiveMass * s.residual[i];
+      s.preconditioned[i] = s.edges[i].effectiveMass * s.residual[i];
       next += s.residual[i] * s.preconditioned[i];
       left += s.residual[i] * s.residual[i];
     }
@@ -112,9 +129,10 @@ inline void solveSweptEdgesTogether(std::span<InextensibilityRow> edges, std::sp
     for (size_t i = 0; i < n; ++i) s.direction[i] = s.preconditioned[i] + beta * s.direction[i];
   }
   for (size_t i = 0; i < n; ++i) {
-    InextensibilityRow& r = edges[static_cast<size_t>(s.rows[i])];
-    r.lambda += s.impulse[i];
-    for (int k = 0; k < 2; ++k) ctx.velocity[r.node[k]] += (s.impulse[i] * ctx.inverseMass[r.node[k]]) * r.jacobian[k];
+    const SweptEdgeSolveScratch::Edge& e = s.edges[i];
+    rows[static_cast<size_t>(e.row)].lambda += s.impulse[i];
+    ctx.velocity[e.node[0]] -= (s.impulse[i] * e.inverseMass[0]) * e.n;
+    ctx.velocity[e.node[1]] += (s.impulse[i] * e.inverseMass[1]) * e.n;
   }
 }
 
