@@ -29,13 +29,13 @@
 //
 // Measured (`build/bench/gauntlet_study 2:1 4:1`, `tandem run scenes/cloth_sphere.json`): the
 // draped 51 × 51 cloth takes 5,500 strain-limiting passes in its first 100 steps instead of
-// 12,200, and costs 6.0 instead of 8.5 ms per step; the 101 × 101 cloth 55 instead of 103 ms,
-// its worst stretch after contact 6.8 % instead of 10.4 % (201 × 201: 25 % instead of 46 %); a
-// 31 × 31 curtain pinned along its top edge hangs still (3·10⁻⁶ m/s RMS over its second and third
-// second, against 0.038; World.SweptCurtainHangsStill). Ten iterations in the first two sweeps:
-// ten in every sweep cost more for fewer passes (7.9 against 7.0 ms over the first 100 steps),
-// twenty in the first only as much for more (7.8 ms), five in each of four left the curtain
-// moving at 5·10⁻⁴ m/s.
+// 12,200 and costs 5.6 instead of 8.5 ms per step (4.3 instead of 5.1 over its 10 s); the
+// 101 × 101 cloth 53 instead of 103 ms, its worst stretch after contact 6.8 % instead of 10.4 %
+// (201 × 201: 25 % instead of 46 %); a 31 × 31 curtain pinned along its top edge hangs still
+// (3·10⁻⁶ m/s RMS over its second and third second, against 0.038;
+// World.SweptCurtainHangsStill). Ten iterations in the first two sweeps: ten in every sweep cost
+// more for fewer passes (7.9 against 7.0 ms over the first 100 steps), twenty in the first only
+// as much for more (7.8 ms), five in each of four left the curtain moving at 5·10⁻⁴ m/s.
 #pragma once
 
 #include "constraints/inextensibility.h"
