@@ -188,7 +188,7 @@ class DirectBlock {
   static constexpr Eigen::Index kLowRankReleases = 32;
   using ReleasedVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kLowRankReleases, 1>;
   using ReleasedMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kLowRankReleases, kLowRankReleases>;
-  mutable ReleasedVector m_atReleased, m_releasedMultipliers;  // scratch of solveKkt
+  mutable ReleasedVector m_atReleased, m_releasedMultipliers;  // scratch of dropReleasedEquations
   // Scratch of solveWithFactor, for one right-hand side or many in turn: a std::vector keeps its
   // capacity when it shrinks, where an Eigen vector would allocate again.
   mutable std::vector<double> m_permuted, m_partialSums;
