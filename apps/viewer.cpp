@@ -5,6 +5,8 @@
 // pans; the wheel zooms. Keys: space pauses, S steps, R resets, W wireframe, Escape quits.
 // SIGTERM or SIGINT (Ctrl-C) quits the same way, after the frame being drawn: a script that
 // drives the window tells the viewer when it is done instead of racing a wall-clock limit.
+// SIGUSR1 prints the simulated time ("simulated T s") after the frame being drawn: such a script
+// waits for simulated seconds, which a loaded machine stretches, not for wall-clock ones.
 #include "viewer.h"
 
 #include "exit_codes.h"
@@ -42,6 +44,8 @@ using Clock = std::chrono::steady_clock;
 
 volatile std::sig_atomic_t quitRequested = 0;  // set by SIGTERM or SIGINT
 extern "C" void requestQuit(int) { quitRequested = 1; }
+volatile std::sig_atomic_t timeRequested = 0;  // set by SIGUSR1
+extern "C" void requestTime(int) { timeRequested = 1; }
 
 // Every scene the picker offers: the built-ins, then the shipped scene files.
 std::vector<std::string> availableScenes() {
@@ -118,6 +122,11 @@ class Viewer {
       if (sceneWidth > 0 && sceneHeight > 0) m_renderer->draw(*m_world, m_camera, sceneWidth, sceneHeight, drawOptions(sceneX));
       drawPanels();
       ++frame;
+      if (timeRequested != 0) {
+        timeRequested = 0;
+        std::printf("simulated %.4f s\n", m_world->time());
+        std::fflush(stdout);
+      }
       const bool lastFrame =
           quitRequested != 0 || (m_options.frames > 0 && frame >= m_options.frames) ||
           (m_options.maxSeconds > 0 && std::chrono::duration<double>(Clock::now() - start).count() > m_options.maxSeconds);
@@ -456,6 +465,7 @@ int view(const ViewOptions& options) {
   ImGui_ImplOpenGL3_Init("#version 330");
   std::signal(SIGTERM, requestQuit);
   std::signal(SIGINT, requestQuit);
+  std::signal(SIGUSR1, requestTime);
   int status = kExitOther;
   {
     Result<std::unique_ptr<render::Renderer>> renderer = render::Renderer::create();
