@@ -192,6 +192,10 @@ Result<RigidBodyId> World::addRigidBody(const RigidBodyDesc& desc) {
     return Error{who + ": friction must be >= 0, got " + formatNumber(desc.friction)};
   if (!(desc.restitution >= 0 && desc.restitution <= 1))
     return Error{who + ": restitution must be in [0, 1], got " + formatNumber(desc.restitution)};
+  if (!(desc.linearDamping >= 0 && desc.linearDamping <= 1))
+    return Error{who + ": linear damping must be in [0, 1], got " + formatNumber(desc.linearDamping)};
+  if (!(desc.angularDamping >= 0 && desc.angularDamping <= 1))
+    return Error{who + ": angular damping must be in [0, 1], got " + formatNumber(desc.angularDamping)};
   Impl& w = *m_impl;
   // A removed body's slot is reused (with the next generation), else a new one is made.
   int32_t slot = w.rigidSlots.firstFree();

@@ -164,6 +164,12 @@ TEST(BadInput, WorldRefusesBadBodiesAndConstraints) {
   body.restitution = 2;
   EXPECT_ERROR(world.addRigidBody(body), "restitution must be in [0, 1], got 2");
   body.restitution = 0;
+  body.linearDamping = 1.5;
+  EXPECT_ERROR(world.addRigidBody(body), "linear damping must be in [0, 1], got 1.5");
+  body.linearDamping = 0;
+  body.angularDamping = kNaN;
+  EXPECT_ERROR(world.addRigidBody(body), "angular damping must be in [0, 1], got nan");
+  body.angularDamping = 0;
   const RigidBodyId crate = *world.addRigidBody(body);
 
   EXPECT_ERROR(world.addFixedPoint(id, 9, {0, 0, 0}), "fixed point: node 9 is out of range for deformable 'rope' (4 nodes)");

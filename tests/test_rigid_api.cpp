@@ -61,6 +61,34 @@ TEST(RigidApi, ImpulseAtAPointChangesVelocityByJOverMAndSpinByInverseInertiaTime
   EXPECT_LT((world.rigidAngularVelocity(box) - I.inverse() * Vec3(0, 0, 0.3)).norm(), 1e-12);
 }
 
+// Damping as Bullet applies it, in each (sub)step's prediction: with nothing else acting, a
+// sphere's linear and angular velocities fall as (1 − d)^t, whatever the substeps, and it moves
+// by the damped velocity of each substep, Σ (h/n) v₀ (1 − d)^{k h/n}.
+TEST(RigidApi, DampingTakesTheGivenFractionOfTheVelocityPerSecond) {
+  for (int substeps : {1, 4}) {
+    World world;
+    WorldSettings settings = zeroGravity();
+    settings.solver.substeps = substeps;
+    ASSERT_TRUE(world.setSettings(settings).ok());
+    RigidBodyDesc desc;
+    desc.name = "ball";
+    desc.shape = RigidShape::sphere(0.1);
+    desc.canSleep = false;
+    desc.linearVelocity = {2.0, 0.0, -1.0};
+    desc.angularVelocity = {0.0, 3.0, 0.0};
+    desc.linearDamping = 0.3;
+    desc.angularDamping = 0.5;
+    const RigidBodyId ball = *world.addRigidBody(desc);
+    const double h = 0.02;
+    Vec3 travelled = Vec3::Zero();
+    for (int k = 1; k <= 50 * substeps; ++k) travelled += (h / substeps) * std::pow(0.7, k * h / substeps) * desc.linearVelocity;
+    for (int step = 0; step < 50; ++step) ASSERT_TRUE(world.step(h).ok());
+    EXPECT_LT((world.rigidLinearVelocity(ball) - 0.7 * desc.linearVelocity).norm(), 1e-12) << substeps << " substeps";
+    EXPECT_LT((world.rigidAngularVelocity(ball) - 0.5 * desc.angularVelocity).norm(), 1e-12) << substeps << " substeps";
+    EXPECT_LT((world.rigidPosition(ball) - travelled).norm(), 1e-12) << substeps << " substeps";
+  }
+}
+
 // A force F acting over a step changes the momentum by F h, however many substeps; it acts for
 // that step only. A torque τ changes the spin by I⁻¹ τ h; a force at a point is both.
 TEST(RigidApi, ForceOverOneStepChangesMomentumByForceTimesStepAndIsThenCleared) {

@@ -261,12 +261,12 @@ TEST(SceneFile, AnchorsFindTheNearestNodeAndTheFacePoint) {
 
 // Collision groups and masks, hinge limits and motors: read, written back, and built into a
 // world that acts on them (the ghost falls through the ground; the motor turns its wheel).
-TEST(SceneFile, CollisionFiltersAndHingeMotorsRoundTripAndAct) {
+TEST(SceneFile, CollisionFiltersDampingAndHingeMotorsRoundTripAndAct) {
   const std::string json = R"({"format": 1, "name": "filters",
     "rigid_bodies": [
       {"name": "ground", "shape": {"type": "plane", "normal": [0, 1, 0]}, "mass": 0, "collision_group": 2},
       {"name": "ghost", "shape": {"type": "box", "half_extents": [0.1, 0.1, 0.1]}, "position": [0, 0.5, 0],
-       "collision_mask": 4294967293},
+       "collision_mask": 4294967293, "linear_damping": 0.25, "angular_damping": 0.5},
       {"name": "wheel", "shape": {"type": "cylinder", "radius": 0.3, "half_height": 0.05}, "position": [2, 1, 0],
        "collision_group": 8, "collision_mask": 0}],
     "joints": [{"type": "hinge", "body_a": "wheel", "pivot": [2, 1, 0], "axis": [0, 1, 0],
@@ -278,6 +278,9 @@ TEST(SceneFile, CollisionFiltersAndHingeMotorsRoundTripAndAct) {
   EXPECT_EQ(scene->rigidBodies[0].desc.collisionGroup, 2u);
   EXPECT_EQ(scene->rigidBodies[1].desc.collisionMask, 0xFFFFFFFDu);
   EXPECT_EQ(scene->rigidBodies[1].desc.collisionGroup, 1u);  // the default
+  EXPECT_EQ(scene->rigidBodies[1].desc.linearDamping, 0.25);
+  EXPECT_EQ(scene->rigidBodies[1].desc.angularDamping, 0.5);
+  EXPECT_EQ(scene->rigidBodies[2].desc.linearDamping, 0.0);  // the default
   EXPECT_EQ(scene->deformables[0].desc.collision.group, 16u);
   EXPECT_EQ(scene->deformables[0].desc.collision.mask, 3u);
   EXPECT_EQ(scene->joints[0].lowerLimit, -3.0);
@@ -287,6 +290,7 @@ TEST(SceneFile, CollisionFiltersAndHingeMotorsRoundTripAndAct) {
   EXPECT_EQ(scene->joints[0].motorMaxTorque, 100.0);
   const std::string written = sceneToJson(*scene);
   EXPECT_NE(written.find("\"collision_mask\": 4294967293"), std::string::npos) << written;
+  EXPECT_NE(written.find("\"linear_damping\": 0.25"), std::string::npos) << written;
   EXPECT_NE(written.find("\"limits\": ["), std::string::npos);
   Result<Scene> reread = parseScene(written, "again.json", ".");
   ASSERT_TRUE(reread.ok()) << reread.message();
@@ -478,6 +482,8 @@ const std::vector<BadScene> kBadScenes{
     {"iterations_real", R"({"format": 1, "solver": {"iterations": 2.5}})", "/solver/iterations: must be an integer, got a number"},
     {"friction_model", R"({"format": 1, "solver": {"friction_model": "magic"}})",
      "/solver/friction_model: unknown value 'magic' (expected one of: coulomb, pressure)"},
+    {"damping_negative", scene(R"({"name": "box", "shape": {"type": "box", "half_extents": [0.1, 0.1, 0.1]}, "linear_damping": -0.1})"),
+     "/rigid_bodies/0/linear_damping: must be in [0, 1], got -0.1"},
     {"negative_mass", scene(R"({"name": "box", "shape": {"type": "box", "half_extents": [0.1, 0.1, 0.1]}, "mass": -1})"),
      "/rigid_bodies/0/mass: must be >= 0, got -1"},
     {"no_shape", scene(R"({"name": "box"})"), "/rigid_bodies/0: missing field 'shape'"},

@@ -162,6 +162,11 @@ struct RigidBodyDesc {
   Vec3 angularVelocity = Vec3::Zero();  // rad/s, world frame
   double friction = 0.5;
   double restitution = 0.0;
+  // Velocity damping, as Bullet's: the fraction of the linear (angular) velocity a dynamic body
+  // loses per second, each in [0, 1]; v(t) = v(0) (1 − d)^t when nothing else acts. Air drag or a
+  // body's own losses, which an undamped simulation keeps for ever (a pendulum swings on).
+  double linearDamping = 0.0;
+  double angularDamping = 0.0;
   // Bullet lets a body that has been slow for 2 s sleep: it stops moving and stops reporting
   // contact forces. Turn this off for bodies whose contact forces you read. (A body anchored
   // to a deformable never falls asleep on its own; put to sleep, it wakes when the deformable

@@ -81,6 +81,10 @@ void bindRigid(py::module_& module) {
       .def_readwrite("angular_velocity", &RigidBodyDesc::angularVelocity, "rad/s, world frame.")
       .def_readwrite("friction", &RigidBodyDesc::friction, "Friction coefficient.")
       .def_readwrite("restitution", &RigidBodyDesc::restitution, "Restitution coefficient.")
+      .def_readwrite("linear_damping", &RigidBodyDesc::linearDamping,
+                     "Fraction of the linear velocity lost per second, in [0, 1] (Bullet's damping).")
+      .def_readwrite("angular_damping", &RigidBodyDesc::angularDamping,
+                     "Fraction of the angular velocity lost per second, in [0, 1].")
       .def_readwrite("can_sleep", &RigidBodyDesc::canSleep,
                      "Whether Bullet may put it to sleep after 2 s at rest (then it reports no contact forces).")
       .def_property(

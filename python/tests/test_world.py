@@ -55,6 +55,18 @@ def test_free_fall_matches_g_t_squared_over_two():
     np.testing.assert_allclose(world.total_linear_momentum(), [0, -2.1 * G * t, 0], rtol=1e-9, atol=1e-12)
 
 
+def test_damping_takes_its_fraction_of_the_velocity_per_second():
+    world = tandem.World(tandem.WorldSettings(gravity=(0, 0, 0)))
+    ball = world.add_rigid_body(tandem.RigidBodyDesc(
+        name="ball", shape=tandem.RigidShape.sphere(0.1), linear_velocity=(1.0, 0.0, 0.0),
+        angular_velocity=(0.0, 2.0, 0.0), linear_damping=0.2, angular_damping=0.6, can_sleep=False))
+    world.step(0.02, steps=100)  # 2 s: v = v0 (1 - d)^t
+    np.testing.assert_allclose(world.rigid_linear_velocity(ball), [0.8 ** 2, 0, 0], rtol=1e-12, atol=1e-15)
+    np.testing.assert_allclose(world.rigid_angular_velocity(ball), [0, 2.0 * 0.4 ** 2, 0], rtol=1e-12, atol=1e-15)
+    with pytest.raises(tandem.Error, match="linear damping must be in"):
+        world.add_rigid_body(tandem.RigidBodyDesc(name="bad", shape=tandem.RigidShape.sphere(0.1), linear_damping=2.0))
+
+
 def test_rigid_pose_mass_and_inertia():
     world = tandem.World(tandem.WorldSettings(gravity=(0, 0, 0)))
     angle = 0.3

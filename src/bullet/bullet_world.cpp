@@ -122,6 +122,8 @@ int BulletWorld::addRigidBody(const RigidBodyDesc& desc, int slot) {
   btRigidBody::btRigidBodyConstructionInfo info(mass, motionState.get(), shape.get(), inertia);
   info.m_friction = desc.friction;
   info.m_restitution = desc.restitution;
+  info.m_linearDamping = desc.linearDamping;  // applied in each prediction: v ← v (1 − d)^h
+  info.m_angularDamping = desc.angularDamping;
   auto body = std::make_unique<btRigidBody>(info);
   if (desc.motion == MotionType::Kinematic) {
     body->setCollisionFlags(body->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);

@@ -223,6 +223,8 @@ SceneRigidBody readRigidBody(const Json& value, const std::string& path, const B
   bounds.angularSpeed(d.angularVelocity, body.fieldPath("angular_velocity"));
   d.friction = body.nonNegative("friction", d.friction);
   d.restitution = body.numberIn("restitution", d.restitution, 0.0, 1.0);
+  d.linearDamping = body.numberIn("linear_damping", d.linearDamping, 0.0, 1.0);
+  d.angularDamping = body.numberIn("angular_damping", d.angularDamping, 0.0, 1.0);
   d.canSleep = body.boolean("can_sleep", d.canSleep);
   d.collisionGroup = body.bits("collision_group", d.collisionGroup);
   d.collisionMask = body.bits("collision_mask", d.collisionMask);

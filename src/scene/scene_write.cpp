@@ -84,6 +84,8 @@ Json rigidJson(const SceneRigidBody& body) {
            {"angular_velocity", vec(d.angularVelocity)},
            {"friction", d.friction},
            {"restitution", d.restitution},
+           {"linear_damping", d.linearDamping},
+           {"angular_damping", d.angularDamping},
            {"can_sleep", d.canSleep},
            {"collision_group", d.collisionGroup},
            {"collision_mask", d.collisionMask}};

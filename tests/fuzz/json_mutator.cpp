@@ -28,7 +28,7 @@ const std::vector<std::string> kWords{
     "iterations", "substeps", "row_solver", "warm_start", "baumgarte", "contact_slop", "friction_model",
     "rigid_bodies", "shape", "type", "half_extents", "radius", "half_height", "normal", "offset", "points",
     "vertices", "triangles", "file", "mass", "position", "orientation", "euler_degrees", "linear_velocity",
-    "angular_velocity", "friction", "restitution", "kinematic", "can_sleep", "joints", "body_a", "body_b",
+    "angular_velocity", "friction", "restitution", "linear_damping", "angular_damping", "kinematic", "can_sleep", "joints", "body_a", "body_b",
     "pivot", "axis", "deformables", "mesh", "start", "end", "path", "nodes", "corner", "side_u", "side_v",
     "columns", "rows", "min", "max", "cells", "base_centre", "height", "rings", "sectors", "layers",
     "density", "initial_velocity", "paradigm", "spring_stiffness", "spring_damping", "stiffness", "damping",
