@@ -292,6 +292,16 @@ Status World::setRigidCanSleep(RigidBodyId body, bool canSleep) {
   return {};
 }
 
+Status World::setRigidDamping(RigidBodyId body, double linearDamping, double angularDamping) {
+  if (Status s = m_impl->rigidSlots.check(body.index, body.generation); !s) return Error{"damping: " + s.message()};
+  if (!(linearDamping >= 0 && linearDamping <= 1))
+    return Error{"damping: linear damping must be in [0, 1], got " + formatNumber(linearDamping)};
+  if (!(angularDamping >= 0 && angularDamping <= 1))
+    return Error{"damping: angular damping must be in [0, 1], got " + formatNumber(angularDamping)};
+  m_impl->bullet.setDamping(body.index, linearDamping, angularDamping);
+  return {};
+}
+
 Status World::setKinematicTarget(RigidBodyId body, const Vec3& position, const Quat& orientation) {
   if (Status s = m_impl->rigidSlots.check(body.index, body.generation); !s)
     return Error{"kinematic target: " + s.message()};

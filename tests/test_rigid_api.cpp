@@ -86,6 +86,17 @@ TEST(RigidApi, DampingTakesTheGivenFractionOfTheVelocityPerSecond) {
     EXPECT_LT((world.rigidLinearVelocity(ball) - 0.7 * desc.linearVelocity).norm(), 1e-12) << substeps << " substeps";
     EXPECT_LT((world.rigidAngularVelocity(ball) - 0.5 * desc.angularVelocity).norm(), 1e-12) << substeps << " substeps";
     EXPECT_LT((world.rigidPosition(ball) - travelled).norm(), 1e-12) << substeps << " substeps";
+    // Changed, it acts from the next step; a snapshot keeps the damping it was taken with.
+    const WorldSnapshot snapshot = world.snapshot();
+    ASSERT_TRUE(world.setRigidDamping(ball, 0.0, 0.0).ok());
+    for (int step = 0; step < 50; ++step) ASSERT_TRUE(world.step(h).ok());
+    EXPECT_LT((world.rigidLinearVelocity(ball) - 0.7 * desc.linearVelocity).norm(), 1e-12);
+    ASSERT_TRUE(world.restore(snapshot).ok());
+    for (int step = 0; step < 50; ++step) ASSERT_TRUE(world.step(h).ok());
+    EXPECT_LT((world.rigidLinearVelocity(ball) - 0.49 * desc.linearVelocity).norm(), 1e-12);
+    EXPECT_LT((world.rigidAngularVelocity(ball) - 0.25 * desc.angularVelocity).norm(), 1e-12);
+    EXPECT_FALSE(world.setRigidDamping(ball, 1.5, 0.0).ok());
+    EXPECT_FALSE(world.setRigidDamping(RigidBodyId{7}, 0.1, 0.1).ok());
   }
 }
 

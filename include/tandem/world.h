@@ -422,6 +422,9 @@ class TANDEM_API World {
   bool rigidIsAwake(RigidBodyId body) const;
   Status putRigidToSleep(RigidBodyId body);
   Status setRigidCanSleep(RigidBodyId body, bool canSleep);
+  // RigidBodyDesc::linearDamping and angularDamping, each in [0, 1], from the next step on
+  // (kept in snapshots).
+  Status setRigidDamping(RigidBodyId body, double linearDamping, double angularDamping);
   // Moves a kinematic body to this pose by the end of the next step (its velocity follows).
   Status setKinematicTarget(RigidBodyId body, const Vec3& position, const Quat& orientation);
 

@@ -95,6 +95,13 @@ void bindBuilding(py::class_<Self>& cls) {
           },
           py::arg("body"), py::arg("can_sleep"), "Lets Bullet put the body to sleep, or not.")
       .def(
+          "set_rigid_damping",
+          [](Self& w, RigidBodyId id, double linearDamping, double angularDamping) {
+            check(w.world().setRigidDamping(w.checked(id, "set_rigid_damping"), linearDamping, angularDamping));
+          },
+          py::arg("body"), py::arg("linear_damping"), py::arg("angular_damping"),
+          "The fractions of its linear and angular velocity a body loses per second, each in [0, 1].")
+      .def(
           "set_kinematic_target",
           [](Self& w, RigidBodyId id, const Vec3& position, const Quat& orientation) {
             w.check(w.world().setKinematicTarget(id, position, orientation), id);

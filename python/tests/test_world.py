@@ -63,6 +63,11 @@ def test_damping_takes_its_fraction_of_the_velocity_per_second():
     world.step(0.02, steps=100)  # 2 s: v = v0 (1 - d)^t
     np.testing.assert_allclose(world.rigid_linear_velocity(ball), [0.8 ** 2, 0, 0], rtol=1e-12, atol=1e-15)
     np.testing.assert_allclose(world.rigid_angular_velocity(ball), [0, 2.0 * 0.4 ** 2, 0], rtol=1e-12, atol=1e-15)
+    world.set_rigid_damping(ball, 0.0, 0.0)
+    world.step(0.02, steps=50)
+    np.testing.assert_allclose(world.rigid_linear_velocity(ball), [0.8 ** 2, 0, 0], rtol=1e-12, atol=1e-15)
+    with pytest.raises(tandem.Error, match="angular damping must be in"):
+        world.set_rigid_damping(ball, 0.0, -1.0)
     with pytest.raises(tandem.Error, match="linear damping must be in"):
         world.add_rigid_body(tandem.RigidBodyDesc(name="bad", shape=tandem.RigidShape.sphere(0.1), linear_damping=2.0))
 

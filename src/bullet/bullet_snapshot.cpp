@@ -33,6 +33,8 @@ std::unique_ptr<BulletWorld::State> BulletWorld::saveState() const {
     saved.activationState = body.getActivationState();
     saved.deactivationTime = body.getDeactivationTime();
     saved.hitFraction = body.getHitFraction();
+    saved.linearDamping = body.getLinearDamping();
+    saved.angularDamping = body.getAngularDamping();
     saved.pendingForce = w.pendingForce[b];
     saved.pendingTorque = w.pendingTorque[b];
     saved.stepForce = w.stepForce[b];
@@ -74,6 +76,7 @@ int BulletWorld::restoreState(const State& state) {
     body.forceActivationState(saved.activationState);
     body.setDeactivationTime(saved.deactivationTime);
     body.setHitFraction(saved.hitFraction);
+    body.setDamping(saved.linearDamping, saved.angularDamping);
     body.clearForces();
     w.pendingForce[b] = saved.pendingForce;
     w.pendingTorque[b] = saved.pendingTorque;

@@ -399,6 +399,9 @@ void BulletWorld::setCanSleep(int body, bool canSleep) {
   b.forceActivationState(canSleep ? ACTIVE_TAG : DISABLE_DEACTIVATION);
   b.activate(true);
 }
+void BulletWorld::setDamping(int body, double linearDamping, double angularDamping) {
+  m_impl->bodies[body]->setDamping(linearDamping, angularDamping);
+}
 void BulletWorld::setKinematicTarget(int body, const Vec3& position, const Quat& orientation) {
   m_impl->motionStates[body]->setWorldTransform(btTransform(toBt(orientation.normalized()), toBt(position)));
 }

@@ -114,6 +114,7 @@ class BulletWorld {
   void restartSleepTimer(int body);  // an awake body stays awake at least another 2 s
   void putToSleep(int body);
   void setCanSleep(int body, bool canSleep);
+  void setDamping(int body, double linearDamping, double angularDamping);
   void setKinematicTarget(int body, const Vec3& position, const Quat& orientation);
   double contactImpulse(int bodyA, int bodyB) const;  // N·s over the step, summed over its solves
   // At the start of a step: the contact impulse sums and points cleared, and the forces applied

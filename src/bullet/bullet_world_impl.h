@@ -204,6 +204,7 @@ struct BulletWorld::State {
     btVector3 linearVelocity, angularVelocity, interpolationLinearVelocity, interpolationAngularVelocity;
     int activationState;
     btScalar deactivationTime, hitFraction;
+    btScalar linearDamping, angularDamping;  // World::setRigidDamping changes them
     Vec3 pendingForce, pendingTorque, stepForce, stepTorque;
   };
   struct Manifold {
