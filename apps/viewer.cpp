@@ -439,6 +439,10 @@ CLI::App* addViewCommand(CLI::App& app, ViewOptions& options) {
 }
 
 int view(const ViewOptions& options) {
+  // First: a script may signal the viewer as soon as its window shows (SIGUSR1's default ends it).
+  std::signal(SIGTERM, requestQuit);
+  std::signal(SIGINT, requestQuit);
+  std::signal(SIGUSR1, requestTime);
   glfwSetErrorCallback([](int code, const char* message) { std::fprintf(stderr, "tandem: GLFW %d: %s\n", code, message); });
   if (!glfwInit()) {
     std::fprintf(stderr, "tandem: the viewer needs a display (set DISPLAY, or use `tandem render` with none)\n");
@@ -463,9 +467,6 @@ int view(const ViewOptions& options) {
   ImGui::StyleColorsDark();
   ImGui_ImplGlfw_InitForOpenGL(window, true);
   ImGui_ImplOpenGL3_Init("#version 330");
-  std::signal(SIGTERM, requestQuit);
-  std::signal(SIGINT, requestQuit);
-  std::signal(SIGUSR1, requestTime);
   int status = kExitOther;
   {
     Result<std::unique_ptr<render::Renderer>> renderer = render::Renderer::create();
