@@ -60,6 +60,15 @@ Status validateInertia(const Vec3& inertia, const std::string& who) {
   return {};
 }
 
+// Bullet's damping: each a fraction of the velocity lost per second.
+Status validateDamping(double linearDamping, double angularDamping, const std::string& who) {
+  if (!(linearDamping >= 0 && linearDamping <= 1))
+    return Error{who + ": linear damping must be in [0, 1], got " + formatNumber(linearDamping)};
+  if (!(angularDamping >= 0 && angularDamping <= 1))
+    return Error{who + ": angular damping must be in [0, 1], got " + formatNumber(angularDamping)};
+  return {};
+}
+
 Status validateShape(const RigidShape& s, const std::string& who) {
   auto positiveFinite = [](double v) { return std::isfinite(v) && v > 0; };
   switch (s.type) {
@@ -192,10 +201,7 @@ Result<RigidBodyId> World::addRigidBody(const RigidBodyDesc& desc) {
     return Error{who + ": friction must be >= 0, got " + formatNumber(desc.friction)};
   if (!(desc.restitution >= 0 && desc.restitution <= 1))
     return Error{who + ": restitution must be in [0, 1], got " + formatNumber(desc.restitution)};
-  if (!(desc.linearDamping >= 0 && desc.linearDamping <= 1))
-    return Error{who + ": linear damping must be in [0, 1], got " + formatNumber(desc.linearDamping)};
-  if (!(desc.angularDamping >= 0 && desc.angularDamping <= 1))
-    return Error{who + ": angular damping must be in [0, 1], got " + formatNumber(desc.angularDamping)};
+  if (Status s = validateDamping(desc.linearDamping, desc.angularDamping, who); !s) return Error{s.message()};
   Impl& w = *m_impl;
   // A removed body's slot is reused (with the next generation), else a new one is made.
   int32_t slot = w.rigidSlots.firstFree();
@@ -294,10 +300,7 @@ Status World::setRigidCanSleep(RigidBodyId body, bool canSleep) {
 
 Status World::setRigidDamping(RigidBodyId body, double linearDamping, double angularDamping) {
   if (Status s = m_impl->rigidSlots.check(body.index, body.generation); !s) return Error{"damping: " + s.message()};
-  if (!(linearDamping >= 0 && linearDamping <= 1))
-    return Error{"damping: linear damping must be in [0, 1], got " + formatNumber(linearDamping)};
-  if (!(angularDamping >= 0 && angularDamping <= 1))
-    return Error{"damping: angular damping must be in [0, 1], got " + formatNumber(angularDamping)};
+  if (Status s = validateDamping(linearDamping, angularDamping, "damping"); !s) return s;
   m_impl->bullet.setDamping(body.index, linearDamping, angularDamping);
   return {};
 }

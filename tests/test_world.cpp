@@ -214,12 +214,6 @@ TEST(World, MassSpringHangsAtItsStaticExtensionAndOscillatesAtItsFrequency) {
   EXPECT_NEAR(damped.nodePositions(dampedId)[1].y(), equilibrium, 1e-4);
 }
 
-}  // namespace
-}  // namespace tandem
-
-namespace tandem {
-namespace {
-
 // A 31 × 31 curtain pinned along its top edge, its edges swept (no direct block), hanging
 // straight from rest at the default K = 4: it should stay where it hangs. Its columns are chains
 // of 30 edges; Gauss-Seidel alone left the skirt falling further than the edges allow every
