@@ -142,7 +142,8 @@ struct SolverContext {
   // The nodes' velocities before the warm start: what the swept edges' geometric stiffness
   // measures the rows' velocity change from (constraints/inextensibility.h).
   std::span<const Vec3> startVelocity = {};
-  // Which of the (sub)step's sweeps this is, from 0 (solver/swept_edge_solve.h runs in the first).
+  // Which of the (sub)step's sweeps this is, from 0 (solver/swept_edge_solve.h runs in the first two
+  // and makes its list of rows in the first).
   int iteration = 0;
 };
 

@@ -71,15 +71,19 @@ struct SweptEdgeSolveScratch {
 
 inline void solveSweptEdgesTogether(std::span<InextensibilityRow> rows, std::span<const int32_t> swept,
                                     SolverContext& ctx, SweptEdgeSolveScratch& s) {
-  s.edges.clear();
-  for (int32_t e : swept) {
-    const InextensibilityRow& row = rows[static_cast<size_t>(e)];
-    if (row.effectiveMass == 0.0 || !std::isinf(row.stepLambdaMin) || !std::isinf(row.stepLambdaMax)) continue;
-    s.edges.push_back({e,
-                       {row.node[0], row.node[1]},
-                       row.jacobian[1],
-                       {ctx.inverseMass[row.node[0]], ctx.inverseMass[row.node[1]]},
-                       row.effectiveMass});
+  // The rows' Jacobians, masses and bounds are set once per (sub)step, so the list made in its
+  // first sweep serves the next.
+  if (ctx.iteration == 0) {
+    s.edges.clear();
+    for (int32_t e : swept) {
+      const InextensibilityRow& row = rows[static_cast<size_t>(e)];
+      if (row.effectiveMass == 0.0 || !std::isinf(row.stepLambdaMin) || !std::isinf(row.stepLambdaMax)) continue;
+      s.edges.push_back({e,
+                         {row.node[0], row.node[1]},
+                         row.jacobian[1],
+                         {ctx.inverseMass[row.node[0]], ctx.inverseMass[row.node[1]]},
+                         row.effectiveMass});
+    }
   }
   const size_t n = s.edges.size();
   if (n == 0) return;
