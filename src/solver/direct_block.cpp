@@ -352,6 +352,7 @@ void DirectBlock::factorise(bool mayKeep, bool reusable) {
     return;
   }
   m_factor->factorize(m_kkt);
+  m_cachedRows.clear();
   m_factorOk = m_factor->info() == Eigen::Success;
   m_inverseDiagonal = m_factor->vectorD().cwiseInverse();  // vectorD() returns a copy
   m_factorFresh = true;
@@ -412,14 +413,36 @@ void DirectBlock::release(const std::vector<int32_t>& released) {
   }
   const Eigen::Index size = m_dofCount + scalarRowCount();
   if (m_releasedColumns.rows() != size) m_releasedColumns.resize(size, kLowRankReleases);
-  const auto width = static_cast<Eigen::Index>(released.size());
-  m_releaseRhs.assign(static_cast<size_t>(size * width), 0.0);
-  for (Eigen::Index i = 0; i < width; ++i) m_releaseRhs[static_cast<size_t>((m_dofCount + released[i]) * width + i)] = 1.0;
-  solveWithFactor(m_releaseRhs.data(), m_releaseRhs.data(), width);
-  for (Eigen::Index i = 0; i < width; ++i) {
-    const auto column = static_cast<Eigen::Index>(m_releasedRows.size());
-    for (Eigen::Index k = 0; k < size; ++k) m_releasedColumns(k, column) = m_releaseRhs[static_cast<size_t>(k * width + i)];
-    m_releasedRows.push_back(m_dofCount + released[i]);
+  if (m_cachedColumns.rows() != size) {
+    m_cachedColumns.resize(size, kLowRankReleases);
+    m_cachedRows.clear();
+  }
+  // The columns not cached, solved together (each comes out as it would alone) and cached.
+  auto cachedColumn = [&](Eigen::Index row) {
+    return static_cast<Eigen::Index>(std::find(m_cachedRows.begin(), m_cachedRows.end(), row) - m_cachedRows.begin());
+  };
+  m_uncached.clear();
+  for (int32_t row : released)
+    if (cachedColumn(m_dofCount + row) == static_cast<Eigen::Index>(m_cachedRows.size())) m_uncached.push_back(m_dofCount + row);
+  if (m_cachedRows.size() + m_uncached.size() > static_cast<size_t>(kLowRankReleases)) {  // full: start it again
+    m_cachedRows.clear();
+    m_uncached.clear();
+    for (int32_t row : released) m_uncached.push_back(m_dofCount + row);
+  }
+  const auto width = static_cast<Eigen::Index>(m_uncached.size());
+  if (width > 0) {
+    m_releaseRhs.assign(static_cast<size_t>(size * width), 0.0);
+    for (Eigen::Index i = 0; i < width; ++i) m_releaseRhs[static_cast<size_t>(m_uncached[i] * width + i)] = 1.0;
+    solveWithFactor(m_releaseRhs.data(), m_releaseRhs.data(), width);
+    for (Eigen::Index i = 0; i < width; ++i) {
+      const auto column = static_cast<Eigen::Index>(m_cachedRows.size());
+      for (Eigen::Index k = 0; k < size; ++k) m_cachedColumns(k, column) = m_releaseRhs[static_cast<size_t>(k * width + i)];
+      m_cachedRows.push_back(m_uncached[i]);
+    }
+  }
+  for (int32_t row : released) {
+    m_releasedColumns.col(static_cast<Eigen::Index>(m_releasedRows.size())) = m_cachedColumns.col(cachedColumn(m_dofCount + row));
+    m_releasedRows.push_back(m_dofCount + row);
   }
   m_releasedCouplingMatrix.resize(count, count);
   for (Eigen::Index i = 0; i < count; ++i)

@@ -229,6 +229,12 @@ class DirectBlock {
   ReleasedMatrix m_releasedCouplingMatrix;                 // those columns' released rows
   Eigen::PartialPivLU<ReleasedMatrix> m_releasedCoupling;  // and its factorisation
   std::vector<double> m_releaseRhs;  // scratch of release(): the unit right-hand sides, row by row
+  // A⁻¹ e_r of rows let go with this factorisation, kept while it is: a jelly at rest under a bar
+  // keeps its factorisation for steps and lets the same contacts go in each (the first
+  // m_cachedRows.size() columns, at most kLowRankReleases; cleared by a new factorisation).
+  std::vector<Eigen::Index> m_cachedRows;
+  Eigen::MatrixXd m_cachedColumns;
+  std::vector<Eigen::Index> m_uncached;  // scratch of release(): its rows not in the cache
 
   // Per contact with friction in the block (its row index r), per tangent (columns `column` and
   // `column` + 1 of the matrices below): the velocity change of the block's degrees of freedom
