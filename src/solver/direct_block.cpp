@@ -338,7 +338,6 @@ void DirectBlock::factorise(bool mayKeep, bool reusable) {
   const bool placed = m_kktAssembly.assemble(m_entries, size, size, m_kkt);
   m_releasedRows.clear();  // in the matrix now
   m_frictionStale = true;
-  m_residualChecked = false;
   // The ordering and symbolic factorisation are redone only when the sparsity pattern changes
   // (pinned nodes, movable bodies, the contacts in the block).
   const std::span<const int> outer(m_kkt.outerIndexPtr(), static_cast<size_t>(m_kkt.outerSize()) + 1);
@@ -634,10 +633,9 @@ void DirectBlock::solve(ConstraintRows& rows, SolverContext& ctx, SweepStats& st
       m_solution += m_refinement;
     };
     refinedSolve();
-    if (!m_factorFresh && !m_residualChecked) {
-      m_residualChecked = true;
+    if (!m_factorFresh && round == 0) {
       residual(m_rhs, m_solution, m_residual);
-      // Still short: a second refinement step in each solve of the step (one solve; a
+      // Still short: a second refinement step in each solve from here on (one solve; a
       // factorisation of the jelly dish's block costs about forty), else a new factorisation.
       while (scaledNorm(m_residual) > kKeptFactorTolerance * scaledNorm(m_rhs) && m_keptRefinements < kMaxKeptRefinements) {
         ++m_keptRefinements;

@@ -67,10 +67,15 @@
 // thousand per step, and the factorisation was most of its step's cost. The refinement step
 // above makes the solve exact for A₀ all the same, to the square of F's relative error (about
 // 2·10⁻⁶ of the right-hand side for a one-step-old F, 10⁻¹⁵ for a fresh one); the first solve of
-// each step measures what is left, and past a part in ten thousand takes a second refinement
+// every sweep measures what is left, and past a part in ten thousand takes a second refinement
 // step (in every solve from then on, until the next factorisation), and past that again the
 // block is factorised afresh and solved again. (With one step only, jelly_dish was factorised in
-// 120 of 500 steps, 104 of them for this check; with two, in 54, 19.7 -> 18.8 ms per step.) Momentum is untouched either way: velocities come from the impulses
+// 120 of 500 steps, 104 of them for this check; with two, in 75.) Measured in each sweep, not
+// only in the step's first: a step that starts from rest in a new pose can find a kept
+// factorisation exact enough for its first right-hand side and not for the later sweeps', whose
+// errors then grew about ninefold a sweep (rope_wheel.json stopped dead every step at K = 16
+// threw its rope off at 10 km/s; PaperScenes.RopeWheelStoppedDeadEveryStepStaysStillAtSixteen-
+// Iterations). Momentum is untouched either way: velocities come from the impulses
 // (below). A fresh factorisation's refinement is the compliance's alone, as it always was.
 // The friction responses are not refined: with a kept factorisation they are the exact responses
 // of the system it was made for, a few steps old, which conserves momentum as this step's does;
@@ -182,7 +187,6 @@ class DirectBlock {
   // after releases has their rows dropped, far from next step's matrix).
   bool m_factorReusable = false;
   int m_factorisations = 0;
-  bool m_residualChecked = false;  // this step's first solve measured a kept factorisation's error
   int m_keptRefinements = 1;  // refinement steps per solve with the kept factorisation
   std::vector<int> m_analysedOuter, m_analysedInner;  // the pattern the ordering was computed for
   Eigen::VectorXd m_rhs, m_solution, m_refinement, m_residual;
