@@ -256,9 +256,10 @@ TEST_P(Soak, NoNanNoEnergyGrowthNoWorseCreep) {
 
 // Known limit for rope_wheel, disabled until the solver holds its resting bodies still (its creep
 // today is creepToday below; jelly_dish stays put since its jellies and bar became one block, and
-// cloth_sphere since its swept edges are solved together: both are asserted above). On main at 31d5220 the (13) measures
-// were: the FEM jelly 0.4 mm/s, the PBD jelly 12 mm over 50 s; rope_wheel's motion grew at rest
-// (the most kinetic energy in the window's second half 2.35 mJ against 0.97 mJ in its first).
+// cloth_sphere since its swept edges are solved together: both are asserted above). On main at
+// 31d5220 the (13) measures were: the FEM jelly 0.4 mm/s, the PBD jelly 12 mm over
+// 50 s; rope_wheel's motion grew at rest (the most kinetic energy in the window's second half
+// 2.35 mJ against 0.97 mJ in its first).
 // Run it with --gtest_also_run_disabled_tests; scripts/soak.py plots the drift over 60 s.
 TEST_P(Soak, DISABLED_RestingBodiesStayPut) {
   SoakMeasures measures;

@@ -69,7 +69,7 @@ BulletWorld::BulletWorld(const Vec3& gravity) : m_impl(std::make_unique<Impl>())
   // the ground slid at 0.3 mm/s with a steady spin, for ever, and three boxes stacked on the
   // ground came apart, the top one 0.57 m away after 8 s at K = 4 (17 cm at K = 2). Whole, the
   // solve carries the resting solution over from step to step, as Box2D's and Jolt's do, and both
-  // stay put to the micrometre (Rigid.BoxRestsOnTheGround, Rigid.StackOfBoxesStands).
+  // stay put to the micrometre (RigidApi.BoxesRestingOnTheGroundAndOnEachOtherStayPut).
   m_impl->world.getSolverInfo().m_warmstartingFactor = 1.0;
 }
 

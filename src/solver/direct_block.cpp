@@ -18,7 +18,7 @@ constexpr double kMaxStiffnessToMass = 100;
 // Contacts whose friction a block solves in its own metric (two KKT right-hand sides each per
 // factorisation, solved together).
 constexpr size_t kMaxFrictionContacts = 32;
-// A kept factorisation is used while one refinement step leaves at most this fraction of the
+// A kept factorisation is used while its refinement steps leave at most this fraction of the
 // right-hand side (in velocities: a degree of freedom's residual impulse over its H_ii) unsolved.
 constexpr double kKeptFactorTolerance = 1e-4;
 // At most this many refinement steps per solve with a kept factorisation; past them, it is made afresh.

@@ -74,9 +74,10 @@
 // only in the step's first: a step that starts from rest in a new pose can find a kept
 // factorisation exact enough for its first right-hand side and not for the later sweeps', whose
 // errors then grew about ninefold a sweep (rope_wheel.json stopped dead every step at K = 16
-// threw its rope off at 10 km/s; PaperScenes.RopeWheelStoppedDeadEveryStepStaysStillAtSixteen-
-// Iterations). Momentum is untouched either way: velocities come from the impulses
-// (below). A fresh factorisation's refinement is the compliance's alone, as it always was.
+// threw its rope off at 10 km/s:
+// PaperScenes.RopeWheelStoppedDeadEveryStepStaysStillAtSixteenIterations). Momentum is untouched
+// either way: velocities come from the impulses (below). A fresh factorisation's refinement is
+// the compliance's alone, as it always was.
 // The friction responses are not refined: with a kept factorisation they are the exact responses
 // of the system it was made for, a few steps old, which conserves momentum as this step's does;
 // the effective masses they give differ from this step's by the same part in a thousand or so,
