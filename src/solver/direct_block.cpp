@@ -155,6 +155,7 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
                           std::span<const RigidSolverState> rigid, double timeStep,
                           std::span<const NodePairStiffness> elastic) {
   const bool factorKept = m_factorOk && m_factorReusable;
+  m_stepRhsScale = 0.0;
   m_factorOk = false;
   if (m_rows.empty()) return;  // nothing to solve this step
   // Degrees of freedom: free nodes, then dynamic awake bodies.
@@ -635,15 +636,19 @@ void DirectBlock::solve(ConstraintRows& rows, SolverContext& ctx, SweepStats& st
     refinedSolve();
     if (!m_factorFresh && round == 0) {
       residual(m_rhs, m_solution, m_residual);
+      // Measured against the step's largest right-hand side so far: a later sweep's is the small
+      // error the sweeps in between left, and a residual small for the step is small enough.
+      m_stepRhsScale = std::max(m_stepRhsScale, scaledNorm(m_rhs));
+      const double tolerance = kKeptFactorTolerance * m_stepRhsScale;
       // Still short: a second refinement step in each solve from here on (one solve; a
       // factorisation of the jelly dish's block costs about forty), else a new factorisation.
-      while (scaledNorm(m_residual) > kKeptFactorTolerance * scaledNorm(m_rhs) && m_keptRefinements < kMaxKeptRefinements) {
+      while (scaledNorm(m_residual) > tolerance && m_keptRefinements < kMaxKeptRefinements) {
         ++m_keptRefinements;
         solveKkt(m_residual, m_refinement);
         m_solution += m_refinement;
         residual(m_rhs, m_solution, m_residual);
       }
-      if (scaledNorm(m_residual) > kKeptFactorTolerance * scaledNorm(m_rhs)) {
+      if (scaledNorm(m_residual) > tolerance) {
         // Too far from this step's matrix: factorised afresh (kept next step only if no contact
         // has been let go yet) and solved again.
         factorise(false, std::none_of(m_released.begin(), m_released.end(), [](bool released) { return released; }));

@@ -67,13 +67,13 @@
 // thousand per step, and the factorisation was most of its step's cost. The refinement step
 // above makes the solve exact for A₀ all the same, to the square of F's relative error (about
 // 2·10⁻⁶ of the right-hand side for a one-step-old F, 10⁻¹⁵ for a fresh one); the first solve of
-// every sweep measures what is left, and past a part in ten thousand takes a second refinement
-// step (in every solve from then on, until the next factorisation), and past that again the
-// block is factorised afresh and solved again. (With one step only, jelly_dish was factorised in
-// 120 of 500 steps, 104 of them for this check; with two, in 75.) Measured in each sweep, not
-// only in the step's first: a step that starts from rest in a new pose can find a kept
-// factorisation exact enough for its first right-hand side and not for the later sweeps', whose
-// errors then grew about ninefold a sweep (rope_wheel.json stopped dead every step at K = 16
+// every sweep measures what is left, and past a part in ten thousand of the step's largest
+// right-hand side so far takes a second refinement step (in every solve from then on, until the
+// next factorisation), and past that again the block is factorised afresh and solved again. (With
+// one step only, jelly_dish was factorised in 120 of 500 steps, 104 of them for this check; with
+// two, in 54.) Measured in each sweep, not only in the step's first: a step that starts from rest
+// in a new pose can find a kept factorisation exact enough for its first right-hand side and not
+// for the later sweeps', whose errors then grew about ninefold a sweep (rope_wheel.json stopped dead every step at K = 16
 // threw its rope off at 10 km/s:
 // PaperScenes.RopeWheelStoppedDeadEveryStepStaysStillAtSixteenIterations). Momentum is untouched
 // either way: velocities come from the impulses (below). A fresh factorisation's refinement is
@@ -189,6 +189,7 @@ class DirectBlock {
   bool m_factorReusable = false;
   int m_factorisations = 0;
   int m_keptRefinements = 1;  // refinement steps per solve with the kept factorisation
+  double m_stepRhsScale = 0.0;  // the largest right-hand side of this step's solves, scaled
   std::vector<int> m_analysedOuter, m_analysedInner;  // the pattern the ordering was computed for
   Eigen::VectorXd m_rhs, m_solution, m_refinement, m_residual;
   // The low-rank correction for the rows let go since the last factorisation (release()), in
