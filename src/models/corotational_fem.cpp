@@ -40,28 +40,6 @@ Mat3 stressChange(const FemElements& elements, const Mat3& rotation, const Mat3&
   return rotation * stress(0.5 * (rotated + rotated.transpose()), elements.mu, elements.lambda);
 }
 
-// ∂f_a / ∂x_b of the tetrahedron with its rotation held at R: a unit move of each node along
-// each axis, and the forces it makes (the definition of K, above).
-std::array<std::array<Mat3, 4>, 4> stiffnessBlocks(const FemElements& elements, const FemTetrahedron& tet, const Mat3& rotation) {
-  std::array<std::array<Mat3, 4>, 4> block;
-  for (auto& row : block) row.fill(Mat3::Zero());
-  for (int b = 0; b < 4; ++b)
-    for (int c = 0; c < 3; ++c) {
-      Mat3 ds = Mat3::Zero();  // δD_s for a unit move of node b along axis c
-      for (int k = 0; k < 3; ++k)
-        if (b == 0)
-          ds(c, k) = -1.0;
-        else if (b == k + 1)
-          ds(c, k) = 1.0;
-      const Mat3 forces = nodeForces(tet, stressChange(elements, rotation, ds * tet.restInverse));
-      for (int k = 0; k < 3; ++k) {
-        block[k + 1][b].col(c) = forces.col(k);
-        block[0][b].col(c) -= forces.col(k);
-      }
-    }
-  return block;
-}
-
 }  // namespace
 
 FemElements makeFemElements(int32_t firstNode, std::span<const Vec3> restPositions,
@@ -76,7 +54,6 @@ FemElements makeFemElements(int32_t firstNode, std::span<const Vec3> restPositio
     tet.node = {firstNode + t[0], firstNode + t[1], firstNode + t[2], firstNode + t[3]};
     tet.restInverse = dm.inverse();
     tet.volume = dm.determinant() / 6.0;
-    tet.restStiffness = stiffnessBlocks(elements, tet, Mat3::Identity());
     elements.tetrahedra.push_back(tet);
   }
   return elements;
@@ -107,9 +84,17 @@ void addFemStiffnessBlocks(const FemElements& elements, std::span<const Mat3> ro
                            std::vector<NodePairStiffness>& out) {
   for (size_t t = 0; t < elements.tetrahedra.size(); ++t) {
     const FemTetrahedron& tet = elements.tetrahedra[t];
-    const Mat3& r = rotations[t];
+    std::array<Vec3, 4> g, turned;  // the gradients g_a, and R g_a
+    for (int k = 0; k < 3; ++k) g[k + 1] = tet.restInverse.row(k).transpose();
+    g[0] = -(g[1] + g[2] + g[3]);
+    for (int a = 0; a < 4; ++a) turned[a] = rotations[t] * g[a];
+    const double scale = h * h * tet.volume;  // −h² K_ab = h² V (…)
     for (int a = 0; a < 4; ++a)
-      for (int b = 0; b < 4; ++b) out.push_back({tet.node[a], tet.node[b], Mat3(-h * h * (r * tet.restStiffness[a][b] * r.transpose()))});
+      for (int b = 0; b < 4; ++b) {
+        const Mat3 k = elements.mu * g[a].dot(g[b]) * Mat3::Identity() + elements.mu * turned[b] * turned[a].transpose() +
+                       elements.lambda * turned[a] * turned[b].transpose();
+        out.push_back({tet.node[a], tet.node[b], Mat3(scale * k)});
+      }
   }
 }
 

@@ -9,10 +9,11 @@
 // forces are conservative. Under a rigid motion F = R, ε = 0: no force. The stiffness
 // K = ∂f/∂x is taken with R held (the co-rotational approximation):
 //   δF = δD_s D_m⁻¹,  δP = R (2μ sym(Rᵀ δF) + λ tr(Rᵀ δF) I),  δ[f₁ f₂ f₃] = −V δP D_m⁻ᵀ
-// K is symmetric negative semi-definite and zero on rigid translations. With R held, δP is R
-// times the rest state's δP of Rᵀ δx, so each 3×3 block of K is K_ab = R K⁰_ab Rᵀ for the blocks
-// K⁰ of the tetrahedron at rest (R = I), computed once. The step that uses it is in
-// models/implicit_solve.h.
+// K is symmetric negative semi-definite and zero on rigid translations. Written with the
+// gradients g_a of the barycentric coordinates (F = Σ x_a g_aᵀ: g₁…g₃ the rows of D_m⁻¹,
+// g₀ = −(g₁ + g₂ + g₃)), f_a = −V P g_a, and each 3×3 block is
+//   K_ab = ∂f_a / ∂x_b = −V (μ (g_a · g_b) I + μ R g_b (R g_a)ᵀ + λ R g_a (R g_b)ᵀ).
+// The step that uses it is in models/implicit_solve.h.
 #pragma once
 
 #include "solver/solver_state.h"
@@ -28,7 +29,6 @@ struct FemTetrahedron {
   std::array<int32_t, 4> node{};  // global indices
   Mat3 restInverse = Mat3::Identity();  // D_m⁻¹
   double volume = 0.0;
-  std::array<std::array<Mat3, 4>, 4> restStiffness{};  // K⁰_ab = ∂f_a / ∂x_b with R = I
 };
 
 struct FemElements {
