@@ -3,6 +3,9 @@
 #include <Eigen/LU>
 #include <Eigen/SVD>
 
+#include <cstdint>
+#include <unordered_map>
+
 namespace tandem {
 namespace {
 
@@ -56,6 +59,19 @@ FemElements makeFemElements(int32_t firstNode, std::span<const Vec3> restPositio
     tet.volume = dm.determinant() / 6.0;
     elements.tetrahedra.push_back(tet);
   }
+  std::unordered_map<uint64_t, int32_t> pairIndex;
+  pairIndex.reserve(4 * elements.tetrahedra.size());
+  elements.pairOfBlock.reserve(elements.tetrahedra.size());
+  for (const FemTetrahedron& tet : elements.tetrahedra) {
+    std::array<int32_t, 16>& slots = elements.pairOfBlock.emplace_back();
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b) {
+        const uint64_t key = (uint64_t{static_cast<uint32_t>(tet.node[a])} << 32) | static_cast<uint32_t>(tet.node[b]);
+        const auto [it, added] = pairIndex.try_emplace(key, static_cast<int32_t>(elements.pairs.size()));
+        if (added) elements.pairs.push_back({tet.node[a], tet.node[b]});
+        slots[a * 4 + b] = it->second;
+      }
+  }
   return elements;
 }
 
@@ -82,6 +98,8 @@ void addFemStiffnessProduct(const FemElements& elements, std::span<const Mat3> r
 
 void addFemStiffnessBlocks(const FemElements& elements, std::span<const Mat3> rotations, double h,
                            std::vector<NodePairStiffness>& out) {
+  const size_t first = out.size();
+  for (const auto& [a, b] : elements.pairs) out.push_back({a, b, Mat3::Zero()});
   for (size_t t = 0; t < elements.tetrahedra.size(); ++t) {
     const FemTetrahedron& tet = elements.tetrahedra[t];
     std::array<Vec3, 4> g, turned;  // the gradients g_a, and R g_a
@@ -93,7 +111,7 @@ void addFemStiffnessBlocks(const FemElements& elements, std::span<const Mat3> ro
       for (int b = 0; b < 4; ++b) {
         const Mat3 k = elements.mu * g[a].dot(g[b]) * Mat3::Identity() + elements.mu * turned[b] * turned[a].transpose() +
                        elements.lambda * turned[a] * turned[b].transpose();
-        out.push_back({tet.node[a], tet.node[b], Mat3(scale * k)});
+        out[first + static_cast<size_t>(elements.pairOfBlock[t][a * 4 + b])].k += scale * k;
       }
   }
 }

@@ -35,6 +35,10 @@ struct FemElements {
   std::vector<FemTetrahedron> tetrahedra;
   double mu = 0.0;      // Pa
   double lambda = 0.0;  // Pa
+  // The node pairs the tetrahedra couple, each once (global indices), and per tetrahedron the
+  // pair of each of its 16 blocks (a × 4 + b): the stiffness goes out summed per pair.
+  std::vector<std::array<int32_t, 2>> pairs;
+  std::vector<std::array<int32_t, 16>> pairOfBlock;
 };
 
 // The tetrahedra's rest data; Young's modulus E (Pa) and Poisson's ratio ν.
@@ -51,7 +55,7 @@ void addFemForces(const FemElements& elements, std::span<const Vec3> position, s
 void addFemStiffnessProduct(const FemElements& elements, std::span<const Mat3> rotations, std::span<const Vec3> dx,
                             std::span<Vec3> out, int32_t offset);
 
-// −h² K with the given rotations, as 3×3 node-pair blocks (global indices).
+// −h² K with the given rotations, as 3×3 node-pair blocks (global indices), one per coupled pair.
 void addFemStiffnessBlocks(const FemElements& elements, std::span<const Mat3> rotations, double timeStep,
                            std::vector<NodePairStiffness>& out);
 
