@@ -196,11 +196,15 @@ void solveImplicitVelocities(ImplicitBody& body, Supports& supports, NodeArrays&
 
 void addImplicitStiffness(const ImplicitBody& body, const NodeArrays& nodes, double h, std::vector<NodePairStiffness>& out) {
   addFemStiffnessBlocks(body.fem, body.rotations, h, out);
+  if (body.springs.empty()) return;
+  // Each node's diagonal block once, summed over its springs; each spring's two off-diagonal ones.
+  const size_t diagonal = out.size();
+  for (int32_t i = 0; i < body.nodeCount; ++i) out.push_back({body.firstNode + i, body.firstNode + i, Mat3::Zero()});
   for (const EdgeSpring& spring : body.springs) {
     const SpringBlocks blocks = springBlocks(spring, nodes.position);
     const Mat3 s = h * h * blocks.stiffness + h * blocks.damping;
-    out.push_back({spring.nodeA, spring.nodeA, s});
-    out.push_back({spring.nodeB, spring.nodeB, s});
+    out[diagonal + static_cast<size_t>(spring.nodeA - body.firstNode)].k += s;
+    out[diagonal + static_cast<size_t>(spring.nodeB - body.firstNode)].k += s;
     out.push_back({spring.nodeA, spring.nodeB, -s});
     out.push_back({spring.nodeB, spring.nodeA, -s});
   }
