@@ -642,13 +642,15 @@ void DirectBlock::solve(ConstraintRows& rows, SolverContext& ctx, SweepStats& st
       const double tolerance = kKeptFactorTolerance * m_stepRhsScale;
       // Still short: a second refinement step in each solve from here on (one solve; a
       // factorisation of the jelly dish's block costs about forty), else a new factorisation.
-      while (scaledNorm(m_residual) > tolerance && m_keptRefinements < kMaxKeptRefinements) {
+      double left = scaledNorm(m_residual);
+      while (left > tolerance && m_keptRefinements < kMaxKeptRefinements) {
         ++m_keptRefinements;
         solveKkt(m_residual, m_refinement);
         m_solution += m_refinement;
         residual(m_rhs, m_solution, m_residual);
+        left = scaledNorm(m_residual);
       }
-      if (scaledNorm(m_residual) > tolerance) {
+      if (left > tolerance) {
         // Too far from this step's matrix: factorised afresh (kept next step only if no contact
         // has been let go yet) and solved again.
         factorise(false, std::none_of(m_released.begin(), m_released.end(), [](bool released) { return released; }));

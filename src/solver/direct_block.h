@@ -73,8 +73,8 @@
 // one step only, jelly_dish was factorised in 120 of 500 steps, 104 of them for this check; with
 // two, in 54.) Measured in each sweep, not only in the step's first: a step that starts from rest
 // in a new pose can find a kept factorisation exact enough for its first right-hand side and not
-// for the later sweeps', whose errors then grew about ninefold a sweep (rope_wheel.json stopped dead every step at K = 16
-// threw its rope off at 10 km/s:
+// for the later sweeps', whose errors then grew about ninefold a sweep (rope_wheel.json stopped
+// dead every step at K = 16 threw its rope off at 10 km/s:
 // PaperScenes.RopeWheelStoppedDeadEveryStepStaysStillAtSixteenIterations). Momentum is untouched
 // either way: velocities come from the impulses (below). A fresh factorisation's refinement is
 // the compliance's alone, as it always was.
