@@ -17,10 +17,12 @@
 //
 // symmetric and positive semi-definite (definite unless rows are redundant, where conjugate
 // gradients still converge in the range of A). In the first kEdgeSolveSweeps sweeps of each
-// (sub)step, kEdgeSolveIterations steps of conjugate gradients with the Jacobi preconditioner
-// (A's diagonal is each row's K = wᵢ + wⱼ, whose inverse the row keeps as its effective mass)
-// solve it from Δλ = 0 against the velocities as the sweep finds them, each iteration one pass
-// over the rows (Jᵀ p onto the nodes, then J back); then λ += Δλ and v += W Jᵀ Δλ. Conjugate
+// (sub)step, kEdgeSolveIterations steps of conjugate gradients preconditioned by a two-level
+// cycle (a Gauss-Seidel pass over the rows, each row's K = wᵢ + wⱼ the diagonal whose inverse it
+// keeps as its effective mass; the coarse correction over patches of uniform membrane stress,
+// solver/swept_edge_coarse.h; a pass back) solve it from Δλ = 0 against the velocities as the
+// sweep finds them, each iteration a product with A (Jᵀ p onto the nodes, then J back) and a
+// cycle; then λ += Δλ and v += W Jᵀ Δλ. Conjugate
 // gradients reduce the error in A's energy norm monotonically, over the whole sheet at once
 // (the error after k steps is bounded by a Chebyshev polynomial in A's condition number), so
 // they do not overshoot as over-relaxation does; the Gauss-Seidel pass that follows in the same
@@ -37,11 +39,15 @@
 // more for fewer passes (7.9 against 7.0 ms over the first 100 steps), twenty in the first only
 // as much for more (7.8 ms), five in each of four left the curtain moving at 5·10⁻⁴ m/s; ten in
 // the first sweep only is cheaper at rest (4.05 against 4.3 ms over the 10 s) but not at the
-// impact (101 × 101: 64 against 52 ms, 7.9 against 6.8 % stretch).
+// impact (101 × 101: 64 against 52 ms, 7.9 against 6.8 % stretch). Those were with Jacobi's
+// preconditioner, which carries a correction a few edges per iteration; with the two-level
+// cycle (eighteenth session), three iterations: the curtain still hangs still, the 101 × 101
+// cloth 4.4 % stretched (44 ms), the 201 × 201 8.2 % (357 ms), the 51 × 51 as before.
 #pragma once
 
 #include "constraints/inextensibility.h"
 #include "solver/solver_state.h"
+#include "solver/swept_edge_coarse.h"
 
 #include <cmath>
 #include <span>
@@ -50,7 +56,7 @@
 namespace tandem {
 
 inline constexpr int kEdgeSolveSweeps = 2;       // the first sweeps of a (sub)step that run it
-inline constexpr int kEdgeSolveIterations = 10;  // conjugate-gradient steps in each
+inline constexpr int kEdgeSolveIterations = 3;   // conjugate-gradient steps in each
 inline constexpr double kEdgeSolveTolerance = 1e-4;  // stop early when |r| falls by this factor
 
 // Working memory, kept between steps so that the solve allocates nothing once grown.
@@ -67,6 +73,11 @@ struct SweptEdgeSolveScratch {
   std::vector<Edge> edges;
   std::vector<double> residual, preconditioned, direction, product, impulse;  // per row
   std::vector<Vec3> onNodes;  // W Jᵀ of a row vector, per node
+  std::vector<std::array<int32_t, 2>> edgeNodes;  // the edges' nodes and directions, for the coarse level
+  std::vector<Vec3> directions;
+  SweptEdgeCoarseLevel coarse;
+  std::vector<Vec3> smoothedOnNodes;                       // W Jᵀ z of the preconditioner's z, per node
+  std::vector<double> coarseResidual, coarseCorrection;  // per row
 };
 
 inline void solveSweptEdgesTogether(std::span<InextensibilityRow> rows, std::span<const int32_t> swept,
@@ -87,6 +98,50 @@ inline void solveSweptEdgesTogether(std::span<InextensibilityRow> rows, std::spa
   }
   const size_t n = s.edges.size();
   if (n == 0) return;
+  // The coarse level: its patches made when the edges change, its matrix in each (sub)step.
+  if (ctx.iteration == 0) {
+    s.edgeNodes.resize(n);
+    s.directions.resize(n);
+    for (size_t i = 0; i < n; ++i) {
+      s.edgeNodes[i] = {s.edges[i].node[0], s.edges[i].node[1]};
+      s.directions[i] = s.edges[i].n;
+    }
+    if (s.edgeNodes != s.coarse.edgeNodes) aggregateSweptEdges(s.edgeNodes, s.coarse);
+    buildSweptEdgeCoarse(s.directions, ctx.inverseMass, s.coarse);
+  }
+  if (s.smoothedOnNodes.size() < ctx.velocity.size()) s.smoothedOnNodes.resize(ctx.velocity.size());
+  s.coarseResidual.resize(n);
+  s.coarseCorrection.resize(n);
+  // z = B r, the symmetric two-level cycle from z = 0: a Gauss-Seidel pass over the edges, the
+  // coarse correction of what it left, a pass back (Jacobi alone if the coarse factorisation
+  // failed). y = W Jᵀ z on the nodes, so that A z is read an edge at a time.
+  auto precondition = [&](const std::vector<double>& r, std::vector<double>& z) {
+    if (!s.coarse.factor.ready) {
+      for (size_t i = 0; i < n; ++i) z[i] = s.edges[i].effectiveMass * r[i];
+      return;
+    }
+    std::vector<Vec3>& y = s.smoothedOnNodes;
+    for (const SweptEdgeSolveScratch::Edge& e : s.edges) y[e.node[0]] = y[e.node[1]] = Vec3::Zero();
+    auto add = [&](size_t i, double delta) {
+      const SweptEdgeSolveScratch::Edge& e = s.edges[i];
+      z[i] += delta;
+      y[e.node[0]] -= (delta * e.inverseMass[0]) * e.n;
+      y[e.node[1]] += (delta * e.inverseMass[1]) * e.n;
+    };
+    auto unmet = [&](size_t i) {
+      const SweptEdgeSolveScratch::Edge& e = s.edges[i];
+      return r[i] - e.n.dot(y[e.node[1]] - y[e.node[0]]);
+    };
+    std::fill(z.begin(), z.begin() + static_cast<std::ptrdiff_t>(n), 0.0);
+    for (size_t i = 0; i < n; ++i) add(i, unmet(i) * s.edges[i].effectiveMass);
+    for (size_t i = 0; i < n; ++i) {
+      s.coarseResidual[i] = unmet(i);
+      s.coarseCorrection[i] = 0.0;
+    }
+    applySweptEdgeCoarse(s.coarse, s.coarseResidual, s.coarseCorrection);
+    for (size_t i = 0; i < n; ++i) add(i, s.coarseCorrection[i]);
+    for (size_t i = n; i-- > 0;) add(i, unmet(i) * s.edges[i].effectiveMass);
+  };
   s.residual.resize(n);
   s.preconditioned.resize(n);
   s.direction.resize(n);
@@ -110,10 +165,12 @@ inline void solveSweptEdgesTogether(std::span<InextensibilityRow> rows, std::spa
   for (size_t i = 0; i < n; ++i) {
     const SweptEdgeSolveScratch::Edge& e = s.edges[i];
     s.residual[i] = -(rows[static_cast<size_t>(e.row)].bias + e.n.dot(ctx.velocity[e.node[1]] - ctx.velocity[e.node[0]]));
-    s.preconditioned[i] = e.effectiveMass * s.residual[i];
+    start += s.residual[i] * s.residual[i];
+  }
+  precondition(s.residual, s.preconditioned);
+  for (size_t i = 0; i < n; ++i) {
     s.direction[i] = s.preconditioned[i];
     rz += s.residual[i] * s.preconditioned[i];
-    start += s.residual[i] * s.residual[i];
   }
   for (int iteration = 0; iteration < kEdgeSolveIterations && rz > 0.0; ++iteration) {
     multiply(s.direction, s.product);
@@ -125,11 +182,11 @@ inline void solveSweptEdgesTogether(std::span<InextensibilityRow> rows, std::spa
     for (size_t i = 0; i < n; ++i) {
       s.impulse[i] += alpha * s.direction[i];
       s.residual[i] -= alpha * s.product[i];
-      s.preconditioned[i] = s.edges[i].effectiveMass * s.residual[i];
-      next += s.residual[i] * s.preconditioned[i];
       left += s.residual[i] * s.residual[i];
     }
-    if (left <= kEdgeSolveTolerance * kEdgeSolveTolerance * start) break;
+    if (left <= kEdgeSolveTolerance * kEdgeSolveTolerance * start || iteration + 1 == kEdgeSolveIterations) break;
+    precondition(s.residual, s.preconditioned);
+    for (size_t i = 0; i < n; ++i) next += s.residual[i] * s.preconditioned[i];
     const double beta = next / rz;
     rz = next;
     for (size_t i = 0; i < n; ++i) s.direction[i] = s.preconditioned[i] + beta * s.direction[i];

@@ -1,0 +1,313 @@
+// The coarse level of the swept edges' solve: a two-level preconditioner for the conjugate
+// gradients of solver/swept_edge_solve.h.
+//
+// Why. The swept edges' system A Δλ = r (A = J W Jᵀ over the inextensible edges of a sheet) is a
+// Laplacian in disguise: its condition number grows as the square of the sheet's width in edges,
+// and Jacobi-preconditioned conjugate gradients carry a correction a few edges per iteration. A
+// 101 × 101 cloth draped on a sphere was left 6.8 % stretched after ten iterations, a 201 × 201
+// 25 %, and the strain-limiting passes took the rest by position (docs/solver.md).
+//
+// What. The errors that iterations over single edges leave are smooth tension fields: impulses
+// that vary slowly over the sheet. Within a patch of the sheet such a field is close to a uniform
+// membrane stress σ (2 × 2, symmetric, in the patch's plane), under which an edge along the unit
+// direction n carries λ = nᵀ σ n. So the nodes are grouped into patches (aggregates: a node and
+// its neighbours, then those groups grouped again the same way; about 40 nodes each on a grid),
+// each patch gets the three stresses of its plane as coarse unknowns (σ₁₁, σ₂₂, σ₁₂ in the frame
+// of the patch's two principal edge directions), and P maps them to the edges:
+// P(e, (a, k)) = qₖ(nₑ) for an edge e of patch a, q = ((n·t₁)², (n·t₂)², 2 (n·t₁)(n·t₂)). The
+// coarse matrix is Galerkin's, A_c = Pᵀ A P, assembled through the nodes (A = J W Jᵀ, so
+// A_c = Σ_nodes w Gᵀ G with G = Jᵀ P at the node) into a pattern fixed while the edges are, and
+// factorised by sparse LDLᵀ in each (sub)step (Eigen's numeric factorisation allocates its
+// working copy of the matrix: one small allocation a (sub)step). The preconditioner is the symmetric two-level
+// cycle (solver/swept_edge_solve.h): a Gauss-Seidel pass over the edges, the coarse correction
+// P A_c⁻¹ Pᵀ of what it left, a pass back; symmetric and positive definite, so conjugate
+// gradients apply. On a 61 × 61 sheet hanging from one row it cuts the iterations to a part in
+// 10⁶ to a third of Jacobi's (154 against 458; tests/test_swept_edge_coarse.cpp): patches of
+// uniform stress interpolate a smooth field piecewise, so the coarse level is not exact there.
+//
+// Measured (`GAUNTLET_ONLY=cloth build/bench/gauntlet_study 4:1`, three iterations of the cycle
+// against ten of Jacobi's; docs/solver.md, eighteenth session): worst stretch after contact on
+// the sphere 51 × 51 2.6 % either way (what is left there is not the edges' solve), 101 × 101
+// 4.4 % against 6.8 % (44 against 52 ms per step), 201 × 201 8.2 % against 25 % (357 against
+// 400 ms). The additive B = D⁻¹ + P A_c⁻¹ Pᵀ did as well in the scenes with eight iterations
+// but not on the sheet above (489 iterations against Jacobi's 458); two iterations of the cycle
+// left a hanging curtain moving (World.SweptCurtainHangsStill); patches of five nodes (one round
+// of aggregation) cost more for no less stretch.
+#pragma once
+
+#include "solver/solver_state.h"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+namespace tandem {
+
+struct SweptEdgeCoarseLevel {
+  // The aggregation and the coarse matrix's pattern, made again when the swept edges change.
+  std::vector<std::array<int32_t, 2>> edgeNodes;  // what they were made for
+  std::vector<int32_t> aggregateOfEdge;
+  int32_t aggregateCount = 0;
+  // Per node of the edges, the patches whose edges touch it (slots), and each edge's slots.
+  std::vector<int32_t> slotAggregate, slotNode;
+  std::vector<std::array<int32_t, 2>> slotOfEdge;
+  std::vector<std::array<int32_t, 2>> slotPairs;  // slots at the same node, each pair once (s ≤ t)
+  Eigen::SparseMatrix<double> matrix;             // A_c; its values set in each (sub)step
+  std::vector<int32_t> pairValue;                 // per slot pair, where its 3 × 3 block's entries are
+  std::vector<int32_t> pairMirrorValue;           // and its transpose's (pairs of two patches), or −1
+  std::vector<int32_t> diagonalValue;             // per column
+  std::vector<int32_t> columnLength;              // per patch: entries in each of its columns
+  // Per (sub)step
+  std::vector<Mat3> spread;                // per patch: Σ n nᵀ over its edges
+  std::vector<std::array<Vec3, 2>> frame;  // per patch: t₁, t₂
+  std::vector<Vec3> basisOfEdge;           // q(nₑ) in its patch's frame
+  std::vector<Mat3> slotImage;             // G = Jᵀ P at the slot's node, for the slot's patch
+  // Its factorisation: working memory, which a copy (a world's snapshot) starts afresh.
+  struct Factor {
+    std::unique_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> ldlt =
+        std::make_unique<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>();
+    bool analysed = false;
+    bool ready = false;  // factorised, for the edges' current directions
+    Factor() = default;
+    Factor(const Factor&) : Factor() {}
+    Factor& operator=(const Factor&) {
+      *this = Factor();
+      return *this;
+    }
+    Factor(Factor&&) = default;
+    Factor& operator=(Factor&&) = default;
+  } factor;
+  Eigen::VectorXd rhs, solution;
+};
+
+namespace swept_edge_coarse_detail {
+
+// Greedy aggregation of a graph in compressed rows: a vertex whose neighbours are all free takes
+// them; vertices left over join a neighbouring group; isolated ones are their own.
+inline int32_t aggregate(const std::vector<int32_t>& start, const std::vector<int32_t>& adjacent,
+                         std::vector<int32_t>& group) {
+  const auto count = static_cast<int32_t>(start.size()) - 1;
+  group.assign(static_cast<size_t>(count), -1);
+  int32_t groups = 0;
+  for (int32_t v = 0; v < count; ++v) {
+    if (group[v] >= 0) continue;
+    bool free = true;
+    for (int32_t k = start[v]; k < start[v + 1] && free; ++k) free = group[adjacent[k]] < 0;
+    if (!free) continue;
+    group[v] = groups;
+    for (int32_t k = start[v]; k < start[v + 1]; ++k) group[adjacent[k]] = groups;
+    ++groups;
+  }
+  for (int32_t v = 0; v < count; ++v) {
+    if (group[v] >= 0) continue;
+    for (int32_t k = start[v]; k < start[v + 1] && group[v] < 0; ++k)
+      if (group[adjacent[k]] >= 0) group[v] = group[adjacent[k]];
+    if (group[v] < 0) group[v] = groups++;
+  }
+  return groups;
+}
+
+// The graph of `group`'s groups, from a graph of its vertices.
+inline void groupGraph(const std::vector<int32_t>& start, const std::vector<int32_t>& adjacent,
+                       const std::vector<int32_t>& group, int32_t groups, std::vector<int32_t>& groupStart,
+                       std::vector<int32_t>& groupAdjacent) {
+  std::vector<std::pair<int32_t, int32_t>> links;
+  const auto count = static_cast<int32_t>(start.size()) - 1;
+  for (int32_t v = 0; v < count; ++v)
+    for (int32_t k = start[v]; k < start[v + 1]; ++k)
+      if (group[v] != group[adjacent[k]]) links.emplace_back(group[v], group[adjacent[k]]);
+  std::sort(links.begin(), links.end());
+  links.erase(std::unique(links.begin(), links.end()), links.end());
+  groupStart.assign(static_cast<size_t>(groups) + 1, 0);
+  for (const auto& link : links) ++groupStart[link.first + 1];
+  for (int32_t g = 0; g < groups; ++g) groupStart[g + 1] += groupStart[g];
+  groupAdjacent.resize(links.size());
+  for (size_t k = 0; k < links.size(); ++k) groupAdjacent[k] = links[k].second;
+}
+
+}  // namespace swept_edge_coarse_detail
+
+// Patches for the edges (each given as its two nodes), and the slots the assembly reads.
+inline void aggregateSweptEdges(const std::vector<std::array<int32_t, 2>>& edgeNodes, SweptEdgeCoarseLevel& c) {
+  using namespace swept_edge_coarse_detail;
+  c.edgeNodes = edgeNodes;
+  // The edges' nodes, numbered locally.
+  std::vector<int32_t> nodes;
+  for (const auto& e : edgeNodes) nodes.insert(nodes.end(), {e[0], e[1]});
+  std::sort(nodes.begin(), nodes.end());
+  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+  auto local = [&](int32_t node) {
+    return static_cast<int32_t>(std::lower_bound(nodes.begin(), nodes.end(), node) - nodes.begin());
+  };
+  const auto nodeCount = static_cast<int32_t>(nodes.size());
+  std::vector<int32_t> start(static_cast<size_t>(nodeCount) + 1, 0), adjacent(2 * edgeNodes.size());
+  for (const auto& e : edgeNodes) {
+    ++start[local(e[0]) + 1];
+    ++start[local(e[1]) + 1];
+  }
+  for (int32_t v = 0; v < nodeCount; ++v) start[v + 1] += start[v];
+  std::vector<int32_t> fill(start.begin(), start.end() - 1);
+  for (const auto& e : edgeNodes) {
+    const int32_t a = local(e[0]), b = local(e[1]);
+    adjacent[fill[a]++] = b;
+    adjacent[fill[b]++] = a;
+  }
+  // Two rounds: a node and its neighbours, then such groups and their neighbouring groups.
+  std::vector<int32_t> first, second, groupStart, groupAdjacent;
+  const int32_t firstCount = aggregate(start, adjacent, first);
+  groupGraph(start, adjacent, first, firstCount, groupStart, groupAdjacent);
+  c.aggregateCount = aggregate(groupStart, groupAdjacent, second);
+  std::vector<int32_t> patchOfNode(static_cast<size_t>(nodeCount));
+  for (int32_t v = 0; v < nodeCount; ++v) patchOfNode[v] = second[first[v]];
+  // Each edge belongs to its first node's patch.
+  c.aggregateOfEdge.resize(edgeNodes.size());
+  for (size_t e = 0; e < edgeNodes.size(); ++e) c.aggregateOfEdge[e] = patchOfNode[local(edgeNodes[e][0])];
+  // Slots: the distinct (node, patch) pairs the edges make.
+  std::vector<std::array<int32_t, 3>> pairs;  // (local node, patch, edge * 2 + end)
+  for (size_t e = 0; e < edgeNodes.size(); ++e)
+    for (int end = 0; end < 2; ++end)
+      pairs.push_back({local(edgeNodes[e][end]), c.aggregateOfEdge[e], static_cast<int32_t>(2 * e) + end});
+  std::sort(pairs.begin(), pairs.end());
+  c.slotAggregate.clear();
+  c.slotNode.clear();
+  c.slotOfEdge.assign(edgeNodes.size(), {0, 0});
+  for (size_t k = 0; k < pairs.size(); ++k) {
+    if (k == 0 || pairs[k][0] != pairs[k - 1][0] || pairs[k][1] != pairs[k - 1][1]) {
+      c.slotAggregate.push_back(pairs[k][1]);
+      c.slotNode.push_back(nodes[pairs[k][0]]);
+    }
+    c.slotOfEdge[pairs[k][2] / 2][pairs[k][2] % 2] = static_cast<int32_t>(c.slotAggregate.size()) - 1;
+  }
+  c.slotPairs.clear();
+  for (size_t s = 0; s < c.slotNode.size();) {
+    size_t end = s;
+    while (end < c.slotNode.size() && c.slotNode[end] == c.slotNode[s]) ++end;
+    for (size_t a = s; a < end; ++a)
+      for (size_t b = a; b < end; ++b) c.slotPairs.push_back({static_cast<int32_t>(a), static_cast<int32_t>(b)});
+    s = end;
+  }
+  // The coarse matrix's pattern: a full 3 × 3 block for every two patches meeting at a node (and
+  // each patch with itself), stored column-major in blocks of three rows, so that a block's
+  // entries in a column are contiguous and a block's columns are the column's stride apart.
+  const int32_t size = 3 * c.aggregateCount;
+  std::vector<std::pair<int32_t, int32_t>> blocks;  // (column patch, row patch)
+  for (int32_t a = 0; a < c.aggregateCount; ++a) blocks.emplace_back(a, a);
+  for (const auto& [s, t] : c.slotPairs)
+    if (c.slotAggregate[s] != c.slotAggregate[t]) {
+      blocks.emplace_back(c.slotAggregate[s], c.slotAggregate[t]);
+      blocks.emplace_back(c.slotAggregate[t], c.slotAggregate[s]);
+    }
+  std::sort(blocks.begin(), blocks.end());
+  blocks.erase(std::unique(blocks.begin(), blocks.end()), blocks.end());
+  std::vector<int32_t> blockStart(static_cast<size_t>(c.aggregateCount) + 1, 0);
+  for (const auto& block : blocks) ++blockStart[block.first + 1];
+  for (int32_t a = 0; a < c.aggregateCount; ++a) blockStart[a + 1] += blockStart[a];
+  c.matrix.resize(size, size);
+  c.matrix.resizeNonZeros(static_cast<Eigen::Index>(9 * blocks.size()));
+  int* outer = c.matrix.outerIndexPtr();
+  int* inner = c.matrix.innerIndexPtr();
+  for (int32_t a = 0; a < c.aggregateCount; ++a) {
+    const int32_t rowsInColumn = 3 * (blockStart[a + 1] - blockStart[a]);
+    for (int j = 0; j < 3; ++j) {
+      const int32_t columnStart = 9 * blockStart[a] + j * rowsInColumn;
+      outer[3 * a + j] = columnStart;
+      for (int32_t b = blockStart[a]; b < blockStart[a + 1]; ++b)
+        for (int i = 0; i < 3; ++i) inner[columnStart + 3 * (b - blockStart[a]) + i] = 3 * blocks[b].second + i;
+    }
+  }
+  outer[size] = static_cast<int>(9 * blocks.size());
+  // Where a block's (0, 0) entry is; its (i, j) entry is j column lengths further, plus i.
+  c.columnLength.resize(static_cast<size_t>(c.aggregateCount));
+  for (int32_t a = 0; a < c.aggregateCount; ++a) c.columnLength[a] = 3 * (blockStart[a + 1] - blockStart[a]);
+  auto entry = [&](int32_t rowPatch, int32_t columnPatch) {
+    const auto from = blocks.begin() + blockStart[columnPatch], to = blocks.begin() + blockStart[columnPatch + 1];
+    const auto k = static_cast<int32_t>(std::lower_bound(from, to, std::make_pair(columnPatch, rowPatch)) - from);
+    return outer[3 * columnPatch] + 3 * k;
+  };
+  c.pairValue.resize(c.slotPairs.size());
+  c.pairMirrorValue.resize(c.slotPairs.size());
+  for (size_t p = 0; p < c.slotPairs.size(); ++p) {
+    const int32_t rowPatch = c.slotAggregate[c.slotPairs[p][0]], columnPatch = c.slotAggregate[c.slotPairs[p][1]];
+    c.pairValue[p] = entry(rowPatch, columnPatch);
+    c.pairMirrorValue[p] = rowPatch != columnPatch ? entry(columnPatch, rowPatch) : -1;
+  }
+  c.diagonalValue.resize(static_cast<size_t>(size));
+  for (int32_t a = 0; a < c.aggregateCount; ++a)
+    for (int j = 0; j < 3; ++j) c.diagonalValue[3 * a + j] = entry(a, a) + j * c.columnLength[a] + j;
+  c.factor.analysed = false;
+  c.factor.ready = false;
+}
+
+// The coarse matrix for the edges' current directions, factorised. `direction[e]` is edge e's n,
+// `inverseMass` the nodes' w (indexed by global node).
+inline void buildSweptEdgeCoarse(const std::vector<Vec3>& direction, std::span<const double> inverseMass,
+                                 SweptEdgeCoarseLevel& c) {
+  const size_t edges = direction.size();
+  // Each patch's plane: the two largest principal directions of its edges' n nᵀ.
+  std::vector<Mat3>& spread = c.spread;
+  spread.assign(static_cast<size_t>(c.aggregateCount), Mat3::Zero());
+  for (size_t e = 0; e < edges; ++e) spread[c.aggregateOfEdge[e]] += direction[e] * direction[e].transpose();
+  std::vector<std::array<Vec3, 2>>& frame = c.frame;
+  frame.resize(spread.size());
+  for (size_t a = 0; a < spread.size(); ++a) {
+    Eigen::SelfAdjointEigenSolver<Mat3> eigen(spread[a]);
+    frame[a] = {eigen.eigenvectors().col(2), eigen.eigenvectors().col(1)};
+  }
+  c.basisOfEdge.resize(edges);
+  c.slotImage.assign(c.slotAggregate.size(), Mat3::Zero());
+  for (size_t e = 0; e < edges; ++e) {
+    const auto& [t1, t2] = frame[c.aggregateOfEdge[e]];
+    const double a = direction[e].dot(t1), b = direction[e].dot(t2);
+    c.basisOfEdge[e] = Vec3(a * a, b * b, 2 * a * b);
+    const Mat3 image = direction[e] * c.basisOfEdge[e].transpose();  // Jᵀ of the edge's columns at node 1
+    c.slotImage[c.slotOfEdge[e][0]] -= image;
+    c.slotImage[c.slotOfEdge[e][1]] += image;
+  }
+  // A_c = Σ over nodes of w Gᵀ G, block by block into the fixed pattern.
+  double* value = c.matrix.valuePtr();
+  std::fill(value, value + c.matrix.nonZeros(), 0.0);
+  for (size_t p = 0; p < c.slotPairs.size(); ++p) {
+    const auto& [s, t] = c.slotPairs[p];
+    const Mat3 block = inverseMass[c.slotNode[s]] * c.slotImage[s].transpose() * c.slotImage[t];
+    const int32_t rows = c.columnLength[c.slotAggregate[s]], columns = c.columnLength[c.slotAggregate[t]];
+    for (int j = 0; j < 3; ++j)
+      for (int i = 0; i < 3; ++i) value[c.pairValue[p] + j * columns + i] += block(i, j);
+    if (c.pairMirrorValue[p] >= 0)
+      for (int j = 0; j < 3; ++j)
+        for (int i = 0; i < 3; ++i) value[c.pairMirrorValue[p] + i * rows + j] += block(i, j);
+  }
+  // A column no edge of its patch uses (a sheet with two edge directions has no shear) is kept
+  // apart with a unit diagonal; every other gets a part in 10⁹ of the largest as regularisation.
+  const int32_t size = 3 * c.aggregateCount;
+  double largest = 0.0;
+  for (int32_t k = 0; k < size; ++k) largest = std::max(largest, value[c.diagonalValue[k]]);
+  for (int32_t k = 0; k < size; ++k) {
+    double& diagonal = value[c.diagonalValue[k]];
+    diagonal = diagonal > 1e-12 * largest ? diagonal + 1e-9 * largest : 1.0;
+  }
+  if (!c.factor.analysed) {
+    c.factor.ldlt->analyzePattern(c.matrix);
+    c.factor.analysed = true;
+  }
+  c.factor.ldlt->factorize(c.matrix);
+  c.factor.ready = c.factor.ldlt->info() == Eigen::Success;
+  c.rhs.resize(size);
+  c.solution.resize(size);
+}
+
+// z += P A_c⁻¹ Pᵀ r.
+inline void applySweptEdgeCoarse(SweptEdgeCoarseLevel& c, const std::vector<double>& r, std::vector<double>& z) {
+  c.rhs.setZero();
+  for (size_t e = 0; e < r.size(); ++e) c.rhs.segment<3>(3 * c.aggregateOfEdge[e]) += r[e] * c.basisOfEdge[e];
+  c.solution = c.factor.ldlt->solve(c.rhs);
+  for (size_t e = 0; e < r.size(); ++e) z[e] += c.basisOfEdge[e].dot(c.solution.segment<3>(3 * c.aggregateOfEdge[e]));
+}
+
+}  // namespace tandem
