@@ -83,7 +83,8 @@ TEST(SweptEdgeCoarse, MatrixIsTheGalerkinProductOfTheEdgeSystem) {
     p.block<1, 3>(e, 3 * coarse.aggregateOfEdge[e]) = coarse.basisOfEdge[e].transpose();
   }
   const Eigen::MatrixXd galerkin = p.transpose() * a * p;
-  const Eigen::MatrixXd built = Eigen::MatrixXd(coarse.matrix);
+  const Eigen::SparseMatrix<double> whole = coarse.matrix.selfadjointView<Eigen::Lower>();  // its lower triangle stored
+  const Eigen::MatrixXd built(whole);
   const double largest = galerkin.diagonal().maxCoeff();
   for (Eigen::Index i = 0; i < size; ++i)
     for (Eigen::Index j = 0; j < size; ++j) {

@@ -16,9 +16,10 @@
 // of the patch's two principal edge directions), and P maps them to the edges:
 // P(e, (a, k)) = qₖ(nₑ) for an edge e of patch a, q = ((n·t₁)², (n·t₂)², 2 (n·t₁)(n·t₂)). The
 // coarse matrix is Galerkin's, A_c = Pᵀ A P, assembled through the nodes (A = J W Jᵀ, so
-// A_c = Σ_nodes w Gᵀ G with G = Jᵀ P at the node) into a pattern fixed while the edges are, and
-// factorised by sparse LDLᵀ in each (sub)step (Eigen's numeric factorisation allocates its
-// working copy of the matrix: one small allocation a (sub)step). The preconditioner is the symmetric two-level
+// A_c = Σ_nodes w Gᵀ G with G = Jᵀ P at the node) by solver/sparse_assembly.h (one pass over the
+// values while the patches stay) and factorised by sparse LDLᵀ in each (sub)step (Eigen's numeric
+// factorisation allocates its working copy of the matrix: one small allocation a (sub)step). The
+// preconditioner is the symmetric two-level
 // cycle (solver/swept_edge_solve.h): a Gauss-Seidel pass over the edges, the coarse correction
 // P A_c⁻¹ Pᵀ of what it left, a pass back; symmetric and positive definite, so conjugate
 // gradients apply. On a 61 × 61 sheet hanging from one row it cuts the iterations to a part in
@@ -36,6 +37,7 @@
 #pragma once
 
 #include "solver/solver_state.h"
+#include "solver/sparse_assembly.h"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/SparseCholesky>
@@ -51,24 +53,22 @@
 namespace tandem {
 
 struct SweptEdgeCoarseLevel {
-  // The aggregation and the coarse matrix's pattern, made again when the swept edges change.
-  std::vector<std::array<int32_t, 2>> edgeNodes;  // what they were made for
+  // The aggregation, made again when the swept edges change.
+  std::vector<std::array<int32_t, 2>> edgeNodes;  // what it was made for
   std::vector<int32_t> aggregateOfEdge;
   int32_t aggregateCount = 0;
   // Per node of the edges, the patches whose edges touch it (slots), and each edge's slots.
   std::vector<int32_t> slotAggregate, slotNode;
   std::vector<std::array<int32_t, 2>> slotOfEdge;
   std::vector<std::array<int32_t, 2>> slotPairs;  // slots at the same node, each pair once (s ≤ t)
-  Eigen::SparseMatrix<double> matrix;             // A_c; its values set in each (sub)step
-  std::vector<int32_t> pairValue;                 // per slot pair, where its 3 × 3 block's entries are
-  std::vector<int32_t> pairMirrorValue;           // and its transpose's (pairs of two patches), or −1
-  std::vector<int32_t> diagonalValue;             // per column
-  std::vector<int32_t> columnLength;              // per patch: entries in each of its columns
   // Per (sub)step
   std::vector<Mat3> spread;                // per patch: Σ n nᵀ over its edges
   std::vector<std::array<Vec3, 2>> frame;  // per patch: t₁, t₂
   std::vector<Vec3> basisOfEdge;           // q(nₑ) in its patch's frame
   std::vector<Mat3> slotImage;             // G = Jᵀ P at the slot's node, for the slot's patch
+  std::vector<Eigen::Triplet<double>> entries;  // A_c's, its blocks in the slot pairs' order
+  SparseAssembly assembly{SparseAssembly::Part::LowerTriangle};  // of entries into matrix
+  Eigen::SparseMatrix<double> matrix;                             // A_c, its lower triangle
   // Its factorisation: working memory, which a copy (a world's snapshot) starts afresh.
   struct Factor {
     std::unique_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> ldlt =
@@ -193,54 +193,6 @@ inline void aggregateSweptEdges(const std::vector<std::array<int32_t, 2>>& edgeN
       for (size_t b = a; b < end; ++b) c.slotPairs.push_back({static_cast<int32_t>(a), static_cast<int32_t>(b)});
     s = end;
   }
-  // The coarse matrix's pattern: a full 3 × 3 block for every two patches meeting at a node (and
-  // each patch with itself), stored column-major in blocks of three rows, so that a block's
-  // entries in a column are contiguous and a block's columns are the column's stride apart.
-  const int32_t size = 3 * c.aggregateCount;
-  std::vector<std::pair<int32_t, int32_t>> blocks;  // (column patch, row patch)
-  for (int32_t a = 0; a < c.aggregateCount; ++a) blocks.emplace_back(a, a);
-  for (const auto& [s, t] : c.slotPairs)
-    if (c.slotAggregate[s] != c.slotAggregate[t]) {
-      blocks.emplace_back(c.slotAggregate[s], c.slotAggregate[t]);
-      blocks.emplace_back(c.slotAggregate[t], c.slotAggregate[s]);
-    }
-  std::sort(blocks.begin(), blocks.end());
-  blocks.erase(std::unique(blocks.begin(), blocks.end()), blocks.end());
-  std::vector<int32_t> blockStart(static_cast<size_t>(c.aggregateCount) + 1, 0);
-  for (const auto& block : blocks) ++blockStart[block.first + 1];
-  for (int32_t a = 0; a < c.aggregateCount; ++a) blockStart[a + 1] += blockStart[a];
-  c.matrix.resize(size, size);
-  c.matrix.resizeNonZeros(static_cast<Eigen::Index>(9 * blocks.size()));
-  int* outer = c.matrix.outerIndexPtr();
-  int* inner = c.matrix.innerIndexPtr();
-  for (int32_t a = 0; a < c.aggregateCount; ++a) {
-    const int32_t rowsInColumn = 3 * (blockStart[a + 1] - blockStart[a]);
-    for (int j = 0; j < 3; ++j) {
-      const int32_t columnStart = 9 * blockStart[a] + j * rowsInColumn;
-      outer[3 * a + j] = columnStart;
-      for (int32_t b = blockStart[a]; b < blockStart[a + 1]; ++b)
-        for (int i = 0; i < 3; ++i) inner[columnStart + 3 * (b - blockStart[a]) + i] = 3 * blocks[b].second + i;
-    }
-  }
-  outer[size] = static_cast<int>(9 * blocks.size());
-  // Where a block's (0, 0) entry is; its (i, j) entry is j column lengths further, plus i.
-  c.columnLength.resize(static_cast<size_t>(c.aggregateCount));
-  for (int32_t a = 0; a < c.aggregateCount; ++a) c.columnLength[a] = 3 * (blockStart[a + 1] - blockStart[a]);
-  auto entry = [&](int32_t rowPatch, int32_t columnPatch) {
-    const auto from = blocks.begin() + blockStart[columnPatch], to = blocks.begin() + blockStart[columnPatch + 1];
-    const auto k = static_cast<int32_t>(std::lower_bound(from, to, std::make_pair(columnPatch, rowPatch)) - from);
-    return outer[3 * columnPatch] + 3 * k;
-  };
-  c.pairValue.resize(c.slotPairs.size());
-  c.pairMirrorValue.resize(c.slotPairs.size());
-  for (size_t p = 0; p < c.slotPairs.size(); ++p) {
-    const int32_t rowPatch = c.slotAggregate[c.slotPairs[p][0]], columnPatch = c.slotAggregate[c.slotPairs[p][1]];
-    c.pairValue[p] = entry(rowPatch, columnPatch);
-    c.pairMirrorValue[p] = rowPatch != columnPatch ? entry(columnPatch, rowPatch) : -1;
-  }
-  c.diagonalValue.resize(static_cast<size_t>(size));
-  for (int32_t a = 0; a < c.aggregateCount; ++a)
-    for (int j = 0; j < 3; ++j) c.diagonalValue[3 * a + j] = entry(a, a) + j * c.columnLength[a] + j;
   c.factor.analysed = false;
   c.factor.ready = false;
 }
@@ -270,29 +222,29 @@ inline void buildSweptEdgeCoarse(const std::vector<Vec3>& direction, std::span<c
     c.slotImage[c.slotOfEdge[e][0]] -= image;
     c.slotImage[c.slotOfEdge[e][1]] += image;
   }
-  // A_c = Σ over nodes of w Gᵀ G, block by block into the fixed pattern.
-  double* value = c.matrix.valuePtr();
-  std::fill(value, value + c.matrix.nonZeros(), 0.0);
-  for (size_t p = 0; p < c.slotPairs.size(); ++p) {
-    const auto& [s, t] = c.slotPairs[p];
+  // A_c = Σ over nodes of w Gᵀ G, block by block; its pattern stays while the patches do.
+  const int32_t size = 3 * c.aggregateCount;
+  c.entries.clear();
+  for (const auto& [s, t] : c.slotPairs) {
     const Mat3 block = inverseMass[c.slotNode[s]] * c.slotImage[s].transpose() * c.slotImage[t];
-    const int32_t rows = c.columnLength[c.slotAggregate[s]], columns = c.columnLength[c.slotAggregate[t]];
+    const int32_t rows = 3 * c.slotAggregate[s], columns = 3 * c.slotAggregate[t];
     for (int j = 0; j < 3; ++j)
-      for (int i = 0; i < 3; ++i) value[c.pairValue[p] + j * columns + i] += block(i, j);
-    if (c.pairMirrorValue[p] >= 0)
-      for (int j = 0; j < 3; ++j)
-        for (int i = 0; i < 3; ++i) value[c.pairMirrorValue[p] + i * rows + j] += block(i, j);
+      for (int i = 0; i < 3; ++i) {
+        c.entries.emplace_back(rows + i, columns + j, block(i, j));
+        if (rows != columns) c.entries.emplace_back(columns + j, rows + i, block(i, j));
+      }
   }
+  for (int32_t k = 0; k < size; ++k) c.entries.emplace_back(k, k, 0.0);  // every diagonal entry present
+  const bool newPattern = c.assembly.assemble(c.entries, size, size, c.matrix);
   // A column no edge of its patch uses (a sheet with two edge directions has no shear) is kept
   // apart with a unit diagonal; every other gets a part in 10⁹ of the largest as regularisation.
-  const int32_t size = 3 * c.aggregateCount;
   double largest = 0.0;
-  for (int32_t k = 0; k < size; ++k) largest = std::max(largest, value[c.diagonalValue[k]]);
+  for (int32_t k = 0; k < size; ++k) largest = std::max(largest, c.matrix.coeff(k, k));
   for (int32_t k = 0; k < size; ++k) {
-    double& diagonal = value[c.diagonalValue[k]];
+    double& diagonal = c.matrix.coeffRef(k, k);
     diagonal = diagonal > 1e-12 * largest ? diagonal + 1e-9 * largest : 1.0;
   }
-  if (!c.factor.analysed) {
+  if (newPattern || !c.factor.analysed) {
     c.factor.ldlt->analyzePattern(c.matrix);
     c.factor.analysed = true;
   }
