@@ -1,7 +1,8 @@
-// The swept edges' coarse level (src/solver/swept_edge_coarse.h): its matrix is Galerkin's
+// The swept edges' coarse level (src/solver/swept_edge_coarse.h) and the two-level cycle of
+// their solve (src/solver/swept_edge_solve.h): the coarse matrix is Galerkin's
 // Pᵀ A P of the edges' system, the two-level cycle is symmetric and positive, and it cuts the
 // conjugate gradients' iterations on a wide sheet to a third of Jacobi's.
-#include "solver/swept_edge_coarse.h"
+#include "solver/swept_edge_solve.h"
 
 #include <gtest/gtest.h>
 
@@ -51,12 +52,20 @@ struct Sheet {
   }
   double diagonal(size_t e) const { return inverseMass[edges[e][0]] + inverseMass[edges[e][1]]; }
 
-  // Its coarse level, patches and factorised matrix.
-  SweptEdgeCoarseLevel coarse() const {
-    SweptEdgeCoarseLevel level;
-    aggregateSweptEdges(edges, level);
-    buildSweptEdgeCoarse(direction, inverseMass, level);
-    return level;
+  // The swept edges' solve's working memory for its edges, with their coarse level (patches and
+  // factorised matrix), as solveSweptEdgesTogether prepares it.
+  void prepare(SweptEdgeSolveScratch& s) const {
+    for (size_t e = 0; e < edges.size(); ++e)
+      s.edges.push_back({static_cast<int32_t>(e),
+                         {edges[e][0], edges[e][1]},
+                         direction[e],
+                         {inverseMass[edges[e][0]], inverseMass[edges[e][1]]},
+                         1.0 / diagonal(e)});
+    s.smoothedOnNodes.assign(position.size(), Vec3::Zero());
+    s.coarseResidual.resize(edges.size());
+    s.coarseCorrection.resize(edges.size());
+    aggregateSweptEdges(edges, s.coarse);
+    buildSweptEdgeCoarse(direction, inverseMass, s.coarse);
   }
 };
 
@@ -68,7 +77,9 @@ double dot(const std::vector<double>& a, const std::vector<double>& b) {
 
 TEST(SweptEdgeCoarse, MatrixIsTheGalerkinProductOfTheEdgeSystem) {
   const Sheet sheet(9);
-  SweptEdgeCoarseLevel coarse = sheet.coarse();
+  SweptEdgeSolveScratch scratch;
+  sheet.prepare(scratch);
+  const SweptEdgeCoarseLevel& coarse = scratch.coarse;
   ASSERT_TRUE(coarse.factor.ready);
   ASSERT_GT(coarse.aggregateCount, 1);
   ASSERT_LT(coarse.aggregateCount, static_cast<int32_t>(sheet.position.size()) / 4);  // patches, not nodes
@@ -98,31 +109,12 @@ TEST(SweptEdgeCoarse, MatrixIsTheGalerkinProductOfTheEdgeSystem) {
     }
 }
 
-// z = B r: Jacobi's D⁻¹ r, or the two-level cycle as the swept edges' solve applies it (a
-// Gauss-Seidel pass, the coarse correction of what it left, a pass back).
-std::vector<double> precondition(const Sheet& sheet, SweptEdgeCoarseLevel& coarse, const std::vector<double>& r,
+// z = B r: Jacobi's D⁻¹ r, or the two-level cycle of the swept edges' solve.
+std::vector<double> precondition(const Sheet& sheet, SweptEdgeSolveScratch& scratch, const std::vector<double>& r,
                                  bool twoLevel) {
   std::vector<double> z(r.size(), 0.0);
   if (twoLevel) {
-    std::vector<Vec3> y(sheet.position.size(), Vec3::Zero());
-    auto relax = [&](size_t e) {
-      const Vec3& n = sheet.direction[e];
-      const int32_t i = sheet.edges[e][0], j = sheet.edges[e][1];
-      const double delta = (r[e] - n.dot(y[j] - y[i])) / sheet.diagonal(e);
-      z[e] += delta;
-      y[i] -= delta * sheet.inverseMass[i] * n;
-      y[j] += delta * sheet.inverseMass[j] * n;
-    };
-    for (size_t e = 0; e < r.size(); ++e) relax(e);
-    std::vector<double> left(r.size()), c(r.size(), 0.0);
-    for (size_t e = 0; e < r.size(); ++e) left[e] = r[e] - sheet.direction[e].dot(y[sheet.edges[e][1]] - y[sheet.edges[e][0]]);
-    applySweptEdgeCoarse(coarse, left, c);
-    for (size_t e = 0; e < r.size(); ++e) {
-      z[e] += c[e];
-      y[sheet.edges[e][0]] -= c[e] * sheet.inverseMass[sheet.edges[e][0]] * sheet.direction[e];
-      y[sheet.edges[e][1]] += c[e] * sheet.inverseMass[sheet.edges[e][1]] * sheet.direction[e];
-    }
-    for (size_t e = r.size(); e-- > 0;) relax(e);
+    preconditionSweptEdges(scratch, r, z);
     return z;
   }
   for (size_t e = 0; e < r.size(); ++e) z[e] = r[e] / sheet.diagonal(e);
@@ -131,7 +123,8 @@ std::vector<double> precondition(const Sheet& sheet, SweptEdgeCoarseLevel& coars
 
 TEST(SweptEdgeCoarse, PreconditionerIsSymmetricAndPositive) {
   const Sheet sheet(15);
-  SweptEdgeCoarseLevel coarse = sheet.coarse();
+  SweptEdgeSolveScratch scratch;
+  sheet.prepare(scratch);
   std::mt19937 random(3);
   std::normal_distribution<double> normal;
   for (int trial = 0; trial < 5; ++trial) {
@@ -140,16 +133,16 @@ TEST(SweptEdgeCoarse, PreconditionerIsSymmetricAndPositive) {
       r1[e] = normal(random);
       r2[e] = normal(random);
     }
-    const std::vector<double> z1 = precondition(sheet, coarse, r1, true), z2 = precondition(sheet, coarse, r2, true);
+    const std::vector<double> z1 = precondition(sheet, scratch, r1, true), z2 = precondition(sheet, scratch, r2, true);
     EXPECT_NEAR(dot(r2, z1), dot(r1, z2), 1e-9 * std::sqrt(dot(r1, z1) * dot(r2, z2)));
     EXPECT_GT(dot(r1, z1), 0.0);
   }
 }
 
 // Preconditioned conjugate gradients on A x = b from 0: iterations until |r| < 10⁻⁶ |b|.
-int iterationsToConverge(const Sheet& sheet, SweptEdgeCoarseLevel& coarse, const std::vector<double>& b,
+int iterationsToConverge(const Sheet& sheet, SweptEdgeSolveScratch& scratch, const std::vector<double>& b,
                          bool twoLevel) {
-  std::vector<double> x(b.size(), 0.0), r = b, z = precondition(sheet, coarse, r, twoLevel), d = z;
+  std::vector<double> x(b.size(), 0.0), r = b, z = precondition(sheet, scratch, r, twoLevel), d = z;
   double rz = dot(r, z);
   const double target = 1e-12 * dot(b, b);
   for (int iteration = 1; iteration <= 5000; ++iteration) {
@@ -160,7 +153,7 @@ int iterationsToConverge(const Sheet& sheet, SweptEdgeCoarseLevel& coarse, const
       r[i] -= alpha * ad[i];
     }
     if (dot(r, r) < target) return iteration;
-    z = precondition(sheet, coarse, r, twoLevel);
+    z = precondition(sheet, scratch, r, twoLevel);
     const double next = dot(r, z);
     for (size_t i = 0; i < d.size(); ++i) d[i] = z[i] + next / rz * d[i];
     rz = next;
@@ -173,15 +166,16 @@ TEST(SweptEdgeCoarse, CutsTheConjugateGradientIterationsOnAWideSheet) {
   // node pulled by its weight over one step: the impulses its edges need are the smooth tension
   // field single-edge iterations carry slowly, about one edge per iteration.
   const Sheet sheet(61);
-  SweptEdgeCoarseLevel coarse = sheet.coarse();
+  SweptEdgeSolveScratch scratch;
+  sheet.prepare(scratch);
   std::vector<Vec3> velocity(sheet.position.size(), Vec3::Zero());
   for (size_t n = 0; n < velocity.size(); ++n)
     if (sheet.inverseMass[n] > 0) velocity[n] = Vec3(0, 0, 9.81 * 0.02);
   std::vector<double> b(sheet.edges.size());
   for (size_t e = 0; e < b.size(); ++e)
     b[e] = -sheet.direction[e].dot(velocity[sheet.edges[e][1]] - velocity[sheet.edges[e][0]]);
-  const int jacobi = iterationsToConverge(sheet, coarse, b, false);
-  const int twoLevel = iterationsToConverge(sheet, coarse, b, true);
+  const int jacobi = iterationsToConverge(sheet, scratch, b, false);
+  const int twoLevel = iterationsToConverge(sheet, scratch, b, true);
   EXPECT_LT(twoLevel * 2.5, jacobi) << "two-level " << twoLevel << ", Jacobi " << jacobi;  // 154 against 458
 }
 

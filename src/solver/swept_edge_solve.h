@@ -80,6 +80,40 @@ struct SweptEdgeSolveScratch {
   std::vector<double> coarseResidual, coarseCorrection;  // per row
 };
 
+// z = B r, the symmetric two-level cycle from z = 0: a Gauss-Seidel pass over the edges, the
+// coarse correction of what it left, a pass back (Jacobi alone if the coarse factorisation
+// failed). y = W Jᵀ z on the nodes, so that A z is read an edge at a time. Needs s.edges, the
+// coarse level built for them, and the scratch sized (smoothedOnNodes to the nodes, the two
+// coarse vectors to the edges).
+inline void preconditionSweptEdges(SweptEdgeSolveScratch& s, const std::vector<double>& r, std::vector<double>& z) {
+  const size_t n = s.edges.size();
+  if (!s.coarse.factor.ready) {
+    for (size_t i = 0; i < n; ++i) z[i] = s.edges[i].effectiveMass * r[i];
+    return;
+  }
+  std::vector<Vec3>& y = s.smoothedOnNodes;
+  for (const SweptEdgeSolveScratch::Edge& e : s.edges) y[e.node[0]] = y[e.node[1]] = Vec3::Zero();
+  auto add = [&](size_t i, double delta) {
+    const SweptEdgeSolveScratch::Edge& e = s.edges[i];
+    z[i] += delta;
+    y[e.node[0]] -= (delta * e.inverseMass[0]) * e.n;
+    y[e.node[1]] += (delta * e.inverseMass[1]) * e.n;
+  };
+  auto unmet = [&](size_t i) {
+    const SweptEdgeSolveScratch::Edge& e = s.edges[i];
+    return r[i] - e.n.dot(y[e.node[1]] - y[e.node[0]]);
+  };
+  std::fill(z.begin(), z.begin() + static_cast<std::ptrdiff_t>(n), 0.0);
+  for (size_t i = 0; i < n; ++i) add(i, unmet(i) * s.edges[i].effectiveMass);
+  for (size_t i = 0; i < n; ++i) {
+    s.coarseResidual[i] = unmet(i);
+    s.coarseCorrection[i] = 0.0;
+  }
+  applySweptEdgeCoarse(s.coarse, s.coarseResidual, s.coarseCorrection);
+  for (size_t i = 0; i < n; ++i) add(i, s.coarseCorrection[i]);
+  for (size_t i = n; i-- > 0;) add(i, unmet(i) * s.edges[i].effectiveMass);
+}
+
 inline void solveSweptEdgesTogether(std::span<InextensibilityRow> rows, std::span<const int32_t> swept,
                                     SolverContext& ctx, SweptEdgeSolveScratch& s) {
   // The rows' Jacobians, masses and bounds are set once per (sub)step, so the list made in its
@@ -112,36 +146,6 @@ inline void solveSweptEdgesTogether(std::span<InextensibilityRow> rows, std::spa
   if (s.smoothedOnNodes.size() < ctx.velocity.size()) s.smoothedOnNodes.resize(ctx.velocity.size());
   s.coarseResidual.resize(n);
   s.coarseCorrection.resize(n);
-  // z = B r, the symmetric two-level cycle from z = 0: a Gauss-Seidel pass over the edges, the
-  // coarse correction of what it left, a pass back (Jacobi alone if the coarse factorisation
-  // failed). y = W Jᵀ z on the nodes, so that A z is read an edge at a time.
-  auto precondition = [&](const std::vector<double>& r, std::vector<double>& z) {
-    if (!s.coarse.factor.ready) {
-      for (size_t i = 0; i < n; ++i) z[i] = s.edges[i].effectiveMass * r[i];
-      return;
-    }
-    std::vector<Vec3>& y = s.smoothedOnNodes;
-    for (const SweptEdgeSolveScratch::Edge& e : s.edges) y[e.node[0]] = y[e.node[1]] = Vec3::Zero();
-    auto add = [&](size_t i, double delta) {
-      const SweptEdgeSolveScratch::Edge& e = s.edges[i];
-      z[i] += delta;
-      y[e.node[0]] -= (delta * e.inverseMass[0]) * e.n;
-      y[e.node[1]] += (delta * e.inverseMass[1]) * e.n;
-    };
-    auto unmet = [&](size_t i) {
-      const SweptEdgeSolveScratch::Edge& e = s.edges[i];
-      return r[i] - e.n.dot(y[e.node[1]] - y[e.node[0]]);
-    };
-    std::fill(z.begin(), z.begin() + static_cast<std::ptrdiff_t>(n), 0.0);
-    for (size_t i = 0; i < n; ++i) add(i, unmet(i) * s.edges[i].effectiveMass);
-    for (size_t i = 0; i < n; ++i) {
-      s.coarseResidual[i] = unmet(i);
-      s.coarseCorrection[i] = 0.0;
-    }
-    applySweptEdgeCoarse(s.coarse, s.coarseResidual, s.coarseCorrection);
-    for (size_t i = 0; i < n; ++i) add(i, s.coarseCorrection[i]);
-    for (size_t i = n; i-- > 0;) add(i, unmet(i) * s.edges[i].effectiveMass);
-  };
   s.residual.resize(n);
   s.preconditioned.resize(n);
   s.direction.resize(n);
@@ -167,7 +171,7 @@ inline void solveSweptEdgesTogether(std::span<InextensibilityRow> rows, std::spa
     s.residual[i] = -(rows[static_cast<size_t>(e.row)].bias + e.n.dot(ctx.velocity[e.node[1]] - ctx.velocity[e.node[0]]));
     start += s.residual[i] * s.residual[i];
   }
-  precondition(s.residual, s.preconditioned);
+  preconditionSweptEdges(s, s.residual, s.preconditioned);
   for (size_t i = 0; i < n; ++i) {
     s.direction[i] = s.preconditioned[i];
     rz += s.residual[i] * s.preconditioned[i];
@@ -185,7 +189,7 @@ inline void solveSweptEdgesTogether(std::span<InextensibilityRow> rows, std::spa
       left += s.residual[i] * s.residual[i];
     }
     if (left <= kEdgeSolveTolerance * kEdgeSolveTolerance * start || iteration + 1 == kEdgeSolveIterations) break;
-    precondition(s.residual, s.preconditioned);
+    preconditionSweptEdges(s, s.residual, s.preconditioned);
     for (size_t i = 0; i < n; ++i) next += s.residual[i] * s.preconditioned[i];
     const double beta = next / rz;
     rz = next;
