@@ -111,6 +111,24 @@ Status validateShape(const RigidShape& s, const std::string& who) {
   return {};
 }
 
+// Whether some node of the triangles is on no boundary edge (an edge of one triangle only): a
+// sheet has such nodes, a ribbon two nodes wide has none.
+bool hasInteriorNodes(const std::vector<std::array<int32_t, 3>>& triangles) {
+  std::vector<std::array<int32_t, 2>> edges;
+  for (const auto& t : triangles)
+    for (int k = 0; k < 3; ++k) edges.push_back({std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])});
+  std::sort(edges.begin(), edges.end());
+  std::set<int32_t> onBoundary, used;
+  for (size_t i = 0; i < edges.size();) {
+    size_t j = i;
+    while (j < edges.size() && edges[j] == edges[i]) ++j;
+    if (j - i == 1) onBoundary.insert(edges[i].begin(), edges[i].end());
+    used.insert(edges[i].begin(), edges[i].end());
+    i = j;
+  }
+  return used.size() > onBoundary.size();
+}
+
 }  // namespace
 
 RigidShape RigidShape::box(const Vec3& halfExtents) {
@@ -395,6 +413,7 @@ Result<DeformableId> World::addDeformable(const DeformableDesc& desc) {
   if (desc.paradigm.type == ParadigmType::CorotationalFem)
     fem = makeFemElements(first, mesh.positions, mesh.tetrahedra, desc.paradigm.youngsModulus, desc.paradigm.poissonRatio);
   record.implicitStep = !fem.tetrahedra.empty() || !implicitSprings.empty();
+  record.hasInteriorSurfaceNodes = mesh.tetrahedra.empty() && hasInteriorNodes(mesh.triangles);
   record.supports.reset(first, mesh.nodeCount());
   record.supports.clearHolds();
   if (record.implicitStep)

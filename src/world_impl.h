@@ -50,6 +50,9 @@ struct DeformableRecord {
   ImplicitBody implicit;
   Supports supports;  // surfaces its nodes rest on, from last step (models/supports.h)
   bool removed = false;  // removed: its nodes stay in the arrays, inert (src/world_edit.cpp)
+  // A surface without tetrahedra with a node that no boundary edge reaches (a sheet, not a
+  // ribbon): its limited edges are projected together (solver/strain_limiting.h).
+  bool hasInteriorSurfaceNodes = false;
 };
 
 // Last step's impulse of a contact, by feature, for the next step's warm start.
@@ -134,6 +137,9 @@ struct World::Impl final : bullet::SolverHooks {
     std::vector<char> heldByBody;        // per node: anchored to a dynamic body
     std::vector<Vec3> before, pushed;    // per node
     std::vector<Vec3> reaction;          // per node held by a body: −Σ m Δx of its edges' other ends
+    SweptEdgeSolveScratch together;      // of the edges' projection together
+    std::vector<Vec3> heldAlong;         // per node: the normal of the still shape it touches, or zero
+    std::vector<char> sheet;             // per deformable: its edges are projected together
   } strainScratch;
   PositionBasedScratch paradigmScratch;  // of applyParadigm
   ImplicitSolveScratch implicitScratch;  // of solveImplicitVelocities

@@ -89,7 +89,7 @@ void World::Impl::limitStrainOfUnprojectedRows() {
       for (int32_t n = body.firstNode; n < body.firstNode + body.nodeCount; ++n) {
         const Vec3 local = shape.orientation.conjugate() * (nodes.position[n] - shape.position);
         if (geometry::distanceToShape(*shape.shape, local, reach).distance < reach)
-          scratch.touching.push_back({n, &shape, body.collision.thickness});
+          scratch.touching.push_back({n, &shape, body.collision.thickness, !bullet.isDynamic(int(b))});
       }
     }
   }
@@ -105,6 +105,18 @@ void World::Impl::limitStrainOfUnprojectedRows() {
     scratch.faces.push_back({{row.node[0], row.node[1], row.node[2]}, &shape,
                              form.radius + deformableOfNode(row.node[0]).collision.thickness, row.normal});
   }
+  // The sheets projected together too (strain_limiting.h): surfaces without volume whose faces
+  // leave some node inside them (a ribbon two nodes wide has none: it is a rope), touching no
+  // moving body in this step (the projection does not hold a moving body's contacts: on a taut
+  // sheet it flattened the dent a dropped capsule made, into the capsule, and the passes turned
+  // that into velocity that threw it; docs/solver.md, nineteenth session).
+  scratch.sheet.assign(deformables.size(), 0);
+  for (size_t d = 0; d < deformables.size(); ++d) {
+    bool touchesMovingBody = false;
+    for (size_t b = 0; b < bodyCount; ++b)
+      touchesMovingBody = touchesMovingBody || (scratch.touched[d * bodyCount + b] && bullet.isDynamic(int(b)));
+    scratch.sheet[d] = scratch.limitedBody[d] && deformables[d].hasInteriorSurfaceNodes && !touchesMovingBody;
+  }
   scratch.edges.clear();
   for (int32_t r : scratch.rows)
     if (LimitedEdge edge; makeLimitedEdge(rows.inextensibility[r], scratch.weight, edge)) {
@@ -113,13 +125,14 @@ void World::Impl::limitStrainOfUnprojectedRows() {
           edge.heldByBody = edge.node[k];
           edge.movingMass = 1.0 / scratch.weight[edge.node[1 - k]];
         }
+      edge.inSheet = scratch.sheet[deformableIndexOfNode(edge.node[0])];
       scratch.edges.push_back(edge);
     }
   scratch.before = nodes.position;
   scratch.pushed.assign(nodes.size(), Vec3::Zero());
   scratch.reaction.assign(nodes.size(), Vec3::Zero());
   limitStrain(scratch.edges, scratch.touching, scratch.faces, scratch.weight, nodes.position, scratch.pushed,
-              scratch.reaction);
+              scratch.reaction, scratch.together, scratch.heldAlong);
   for (size_t n = 0; n < nodes.size(); ++n)
     nodes.velocity[n] += (nodes.position[n] - scratch.before[n] - scratch.pushed[n]) / timeStep;
   for (AnchorRow& row : rows.anchors)

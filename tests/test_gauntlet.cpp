@@ -26,9 +26,16 @@ TEST(Gauntlet, CapstanSlidesAboveTheCapstanRatio) { expectPasses(capstan(false))
 TEST(Gauntlet, HeavyPendulumOnALightRopeHoldsAndKeepsItsPeriod) { expectPasses(heavyPendulum()); }
 TEST(Gauntlet, LongRopeHoldsItsLoadUnderDefaultSettings) { expectPasses(longRope()); }
 TEST(Gauntlet, FreeSwingKeepsItsEnergy) { expectPasses(freeSwing()); }
-TEST(Gauntlet, DISABLED_LargeClothOnSphereStaysWithinItsStretchLimit) {
-  expectPasses(clothOnSphere("cloth_sphere.json", 3.0));
+// The paper's 51 × 51 cloth and one of 101 × 101: 2.6 % and 4.4 % before their sheets' edges were
+// projected together in the strain-limiting passes (docs/solver.md, twentieth session), 1.1 %
+// since.
+TEST(Gauntlet, PaperClothOnSphereStaysWithinItsStretchLimit) { expectPasses(clothOnSphere("cloth_sphere.json", 3.0)); }
+TEST(Gauntlet, WiderClothOnSphereStaysWithinItsStretchLimit) {
   expectPasses(clothOnSphere("gauntlet/cloth_sphere_101.json", 2.0));
+}
+// 3.5 % at 201 × 201 (8.2 % before).
+TEST(Gauntlet, DISABLED_LargeClothOnSphereStaysWithinItsStretchLimit) {
+  expectPasses(clothOnSphere("gauntlet/cloth_sphere_201.json", 2.0));
 }
 TEST(Gauntlet, DISABLED_FastProjectileDoesNotPassThroughCloth) {
   expectPasses(projectile(20));

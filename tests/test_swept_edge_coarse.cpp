@@ -59,13 +59,13 @@ struct Sheet {
       s.edges.push_back({static_cast<int32_t>(e),
                          {edges[e][0], edges[e][1]},
                          direction[e],
-                         {inverseMass[edges[e][0]], inverseMass[edges[e][1]]},
+                         {inverseMass[edges[e][0]] * direction[e], inverseMass[edges[e][1]] * direction[e]},
                          1.0 / diagonal(e)});
     s.smoothedOnNodes.assign(position.size(), Vec3::Zero());
     s.coarseResidual.resize(edges.size());
     s.coarseCorrection.resize(edges.size());
     aggregateSweptEdges(edges, s.coarse);
-    buildSweptEdgeCoarse(direction, inverseMass, s.coarse);
+    buildSweptEdgeCoarse(direction, inverseMass, {}, s.coarse);
   }
 };
 

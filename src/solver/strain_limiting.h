@@ -11,10 +11,26 @@
 // 51×51 cloth's middle stopped by a sphere while its skirt still falls) a correction has to
 // cross the sheet, one edge per pass: 40 passes left 23 % there, so passes go on, up to 400,
 // while any edge is still 3 % beyond the limit (2.6 % worst then, for a few costly steps).
-// Tried instead: a global projection of all the edges at once (fast projection: J W Jᵀ δλ = −C
-// by conjugate gradients; the linearisation overshoots on a taut sheet and made it worse),
-// ordering the edges outward from the held nodes (no change), over-relaxation and long-range
-// tethers (docs/architecture.md).
+// So a sheet's edges are also projected all together, in a Newton step of this problem (fast
+// projection, below: projectSheetEdgesTogether) before every second of the first 40 passes:
+// five steps of the swept edges' conjugate gradients with their coarse level, which carries a
+// correction across the sheet at once; the passes then take what it leaves. Measured
+// (`GAUNTLET_ONLY=cloth build/bench/gauntlet_study 2:1 4:1`, docs/solver.md, twentieth
+// session): worst stretch after contact on the sphere 1.07 % at 51 × 51 (2.6 % without), 1.1 % at
+// 101 × 101 (4.4 %), 3.5 % at 201 × 201 (8.2 %), for 6.4 / 47 / 530 ms per step at K = 4 (5.8 /
+// 44 / 366). Before every fourth pass with three steps: 1.1 / 2.5 / 4.7 %; with twenty, 1.1 /
+// 1.2 / 3.5 % for twice the cost. Converged, the step leaves a few tenths of a percent of a
+// uniformly stretched sheet's excess (tests/test_sheet_projection.cpp), on meshes whose
+// triangles brace them: a grid of edges without diagonals shears freely to first order, and the
+// step overshoots along those shears. Ribbons (a rope strip two nodes wide) are left out: a
+// coarse level of membrane stresses needs a sheet's interior, and with rope_wheel's strip in it
+// its light teapot crept faster. So are sheets touching a moving body: the step does not hold a
+// moving body's contacts, and on a taut sheet pinned on all sides it flattened the dent a
+// dropped capsule made into the capsule, which the passes turned into velocity that threw it
+// (the step's own linearisation fails there too: a taut sheet's edges lengthen only at second
+// order across it). Tried before: fast projection of all edges by Jacobi-preconditioned conjugate
+// gradients (it overshot on a taut sheet), ordering the edges outward from the held nodes (no
+// change), over-relaxation and long-range tethers (docs/architecture.md).
 //
 // For an edge (i, j) with d = x_j − x_i, length ℓ = |d|, n = d / ℓ, and the limit
 // L⁺ = (1 + ε) L (stretch) or L⁻ = (1 − ε) L (compression), the projection that moves the
@@ -47,6 +63,7 @@
 #include "collision/contact_detection.h"
 #include "constraints/inextensibility.h"
 #include "solver/solver_state.h"
+#include "solver/swept_edge_solve.h"
 
 #include <algorithm>
 #include <array>
@@ -62,12 +79,17 @@ inline constexpr int kStrainPasses = 40;          // else after this many passes
 inline constexpr double kStrainStillTooFar = 0.03;  // unless an edge was still 3 % beyond the limit,
 inline constexpr int kStrainPassesAtMost = 400;   // then up to this many
 inline constexpr int kStrainPushOutEvery = 4;     // passes between keeping nodes out of shapes
+inline constexpr int kSheetProjectionEvery = 2;        // passes between projecting sheets together (in the first kStrainPasses),
+inline constexpr int kSheetProjectionIterations = 5;    // conjugate-gradient steps at most in a sheet's projection,
+inline constexpr double kSheetProjectionTolerance = 1e-2;  // fewer once its residual has fallen this far
+inline constexpr double kStrainTouching = 1.5;    // a node within this many thicknesses of a still shape is held along its normal
 
 // A node that touched a rigid shape in this step, to be kept out of it.
 struct NodeOnShape {
   int32_t node;
   const CollisionRigid* rigid;
   double thickness;
+  bool still;  // the shape's body does not move by impulses (static, kinematic or asleep)
 };
 
 // An edge as the passes read it: its nodes, the bounds it is kept within and each node's share
@@ -85,6 +107,7 @@ struct LimitedEdge {
   // to, and that end's mass; −1 when neither end is.
   int32_t heldByBody = -1;
   double movingMass = 0.0;
+  bool inSheet = false;  // of a surface body without volume (a cloth): projected together too
 };
 
 // The edge of `row` for the passes; false when neither node can move.
@@ -179,12 +202,80 @@ inline void keepFaceOffCore(const FaceOnCore& face, std::span<const double> weig
   }
 }
 
+// The sheets' limited edges projected together, once (fast projection's Newton step): each edge
+// past a bound is to come back to it and each within its bounds to keep its length, to first
+// order in the moves Δx = W Jᵀ δλ,
+//
+//   (J W Jᵀ) δλ = −(ℓ − clamp(ℓ, L⁻, L⁺)),
+//
+// solved by `iterations` steps of the swept edges' conjugate gradients with their two-level cycle
+// (fewer once the residual has fallen by `tolerance`; solver/swept_edge_solve.h), so that a
+// correction crosses the whole sheet at once instead of an edge per pass. A node touching a
+// still shape moves only in its tangent plane in this step (W = w (I − s sᵀ) with the shape's
+// normal s, `heldAlong`), as the push-outs would put it back there. The coarse level is built
+// for the edges' directions when `buildCoarse` (the stage's first call) and kept for the others
+// (a preconditioner need not be exact).
+inline void projectSheetEdgesTogether(std::span<const LimitedEdge> edges, std::span<const double> weight,
+                                      std::span<const Vec3> heldAlong, std::span<Vec3> x, std::span<Vec3> reaction,
+                                      SweptEdgeSolveScratch& s, bool buildCoarse,
+                                      int iterations = kSheetProjectionIterations,
+                                      double tolerance = kSheetProjectionTolerance) {
+  s.edges.clear();
+  s.residual.clear();
+  bool violated = false;
+  for (size_t k = 0; k < edges.size(); ++k) {
+    const LimitedEdge& edge = edges[k];
+    if (!edge.inSheet) continue;
+    const Vec3 d = x[edge.node[1]] - x[edge.node[0]];
+    const double length = d.norm();
+    if (length < 1e-12) continue;
+    const Vec3 n = d / length;
+    auto response = [&](int32_t node) -> Vec3 {
+      const Vec3& held = heldAlong[static_cast<size_t>(node)];
+      return weight[static_cast<size_t>(node)] * (n - held * held.dot(n));
+    };
+    const Vec3 response0 = response(edge.node[0]), response1 = response(edge.node[1]);
+    const double diagonal = n.dot(response0 + response1);
+    if (!(diagonal > 1e-3 * (weight[edge.node[0]] + weight[edge.node[1]]))) continue;  // held along it
+    s.edges.push_back({static_cast<int32_t>(k), {edge.node[0], edge.node[1]}, n, {response0, response1}, 1.0 / diagonal});
+    const double target = std::clamp(length, edge.shortest, edge.longest);
+    s.residual.push_back(target - length);
+    violated = violated || target != length;
+  }
+  if (!violated) return;
+  if (buildCoarse || !s.coarse.factor.ready) prepareSweptEdgeCoarse(s, weight, heldAlong);
+  solveSweptEdgeSystem(s, x.size(), iterations, tolerance);
+  for (size_t i = 0; i < s.edges.size(); ++i) {
+    const SweptEdgeSolveScratch::Edge& e = s.edges[i];
+    x[e.node[0]] -= s.impulse[i] * e.response[0];
+    x[e.node[1]] += s.impulse[i] * e.response[1];
+    const LimitedEdge& edge = edges[static_cast<size_t>(e.row)];
+    if (edge.heldByBody >= 0)  // −m Δx of the other end
+      reaction[edge.heldByBody] += (edge.heldByBody == edge.node[0] ? -s.impulse[i] : s.impulse[i]) * e.n;
+  }
+}
+
 // (The projections are not added to the rows' λ: warm started with them, the sweep applied them
 // a second time and a draped cloth slid off its sphere.)
 inline void limitStrain(std::span<const LimitedEdge> edges, std::span<const NodeOnShape> contacts,
                         std::span<const FaceOnCore> faces, std::span<const double> weight, std::span<Vec3> x,
-                        std::span<Vec3> pushed, std::span<Vec3> reaction) {
+                        std::span<Vec3> pushed, std::span<Vec3> reaction, SweptEdgeSolveScratch& together,
+                        std::vector<Vec3>& heldAlong) {
+  const bool sheets = std::any_of(edges.begin(), edges.end(), [](const LimitedEdge& edge) { return edge.inSheet; });
+  if (sheets) {
+    heldAlong.assign(x.size(), Vec3::Zero());
+    for (const NodeOnShape& contact : contacts) {
+      if (!contact.still) continue;
+      const CollisionRigid& body = *contact.rigid;
+      const Vec3 local = body.orientation.conjugate() * (x[contact.node] - body.position);
+      const geometry::ShapeDistance distance = geometry::distanceToShape(*body.shape, local, 2 * contact.thickness);
+      if (std::isfinite(distance.distance) && distance.distance < kStrainTouching * contact.thickness)
+        heldAlong[contact.node] = body.orientation * distance.normal;
+    }
+  }
   for (int pass = 0; pass < kStrainPassesAtMost; ++pass) {
+    if (sheets && pass < kStrainPasses && pass % kSheetProjectionEvery == 0)
+      projectSheetEdgesTogether(edges, weight, heldAlong, x, reaction, together, pass == 0);
     double worst = 0.0;
     for (const LimitedEdge& edge : edges) worst = std::max(worst, limitEdge(edge, x, reaction));
     const bool last = worst < kStrainConverged || (pass >= kStrainPasses && worst < kStrainStillTooFar) ||

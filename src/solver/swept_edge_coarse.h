@@ -200,7 +200,7 @@ inline void aggregateSweptEdges(const std::vector<std::array<int32_t, 2>>& edgeN
 // The coarse matrix for the edges' current directions, factorised. `direction[e]` is edge e's n,
 // `inverseMass` the nodes' w (indexed by global node).
 inline void buildSweptEdgeCoarse(const std::vector<Vec3>& direction, std::span<const double> inverseMass,
-                                 SweptEdgeCoarseLevel& c) {
+                                 std::span<const Vec3> heldAlong, SweptEdgeCoarseLevel& c) {
   const size_t edges = direction.size();
   // Each patch's plane: the two largest principal directions of its edges' n nᵀ.
   std::vector<Mat3>& spread = c.spread;
@@ -226,7 +226,11 @@ inline void buildSweptEdgeCoarse(const std::vector<Vec3>& direction, std::span<c
   const int32_t size = 3 * c.aggregateCount;
   c.entries.clear();
   for (const auto& [s, t] : c.slotPairs) {
-    const Mat3 block = inverseMass[c.slotNode[s]] * c.slotImage[s].transpose() * c.slotImage[t];
+    const auto node = static_cast<size_t>(c.slotNode[s]);
+    Mat3 block = c.slotImage[s].transpose() * c.slotImage[t];
+    if (node < heldAlong.size() && !heldAlong[node].isZero())  // W = w (I − s sᵀ)
+      block -= (c.slotImage[s].transpose() * heldAlong[node]) * (heldAlong[node].transpose() * c.slotImage[t]);
+    block *= inverseMass[node];
     const int32_t rows = 3 * c.slotAggregate[s], columns = 3 * c.slotAggregate[t];
     for (int j = 0; j < 3; ++j)
       for (int i = 0; i < 3; ++i) {

@@ -67,7 +67,7 @@ struct SweptEdgeSolveScratch {
     int32_t row;
     int32_t node[2];
     Vec3 n;
-    double inverseMass[2];
+    Vec3 response[2];  // W n at each end: its move per unit impulse along n
     double effectiveMass;
   };
   std::vector<Edge> edges;
@@ -96,8 +96,8 @@ inline void preconditionSweptEdges(SweptEdgeSolveScratch& s, const std::vector<d
   auto add = [&](size_t i, double delta) {
     const SweptEdgeSolveScratch::Edge& e = s.edges[i];
     z[i] += delta;
-    y[e.node[0]] -= (delta * e.inverseMass[0]) * e.n;
-    y[e.node[1]] += (delta * e.inverseMass[1]) * e.n;
+    y[e.node[0]] -= delta * e.response[0];
+    y[e.node[1]] += delta * e.response[1];
   };
   auto unmet = [&](size_t i) {
     const SweptEdgeSolveScratch::Edge& e = s.edges[i];
@@ -114,6 +114,78 @@ inline void preconditionSweptEdges(SweptEdgeSolveScratch& s, const std::vector<d
   for (size_t i = n; i-- > 0;) add(i, unmet(i) * s.edges[i].effectiveMass);
 }
 
+// The coarse level for s.edges: its patches made when the edges change, its matrix for their
+// current directions and the nodes' weights `inverseMass`.
+inline void prepareSweptEdgeCoarse(SweptEdgeSolveScratch& s, std::span<const double> inverseMass,
+                                   std::span<const Vec3> heldAlong = {}) {
+  const size_t n = s.edges.size();
+  s.edgeNodes.resize(n);
+  s.directions.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    s.edgeNodes[i] = {s.edges[i].node[0], s.edges[i].node[1]};
+    s.directions[i] = s.edges[i].n;
+  }
+  if (s.edgeNodes != s.coarse.edgeNodes) aggregateSweptEdges(s.edgeNodes, s.coarse);
+  buildSweptEdgeCoarse(s.directions, inverseMass, heldAlong, s.coarse);
+}
+
+// A Δλ = r for the edges s.edges (A = J W Jᵀ) from Δλ = 0 into s.impulse, r given in
+// s.residual: `iterations` steps of conjugate gradients preconditioned by the two-level cycle
+// (their coarse level prepared), fewer once |r| has fallen by kEdgeSolveTolerance. `nodeCount`
+// bounds the nodes' indices.
+inline void solveSweptEdgeSystem(SweptEdgeSolveScratch& s, size_t nodeCount, int iterations,
+                                 double tolerance = kEdgeSolveTolerance) {
+  const size_t n = s.edges.size();
+  if (s.smoothedOnNodes.size() < nodeCount) s.smoothedOnNodes.resize(nodeCount);
+  if (s.onNodes.size() < nodeCount) s.onNodes.resize(nodeCount);
+  s.coarseResidual.resize(n);
+  s.coarseCorrection.resize(n);
+  s.residual.resize(n);
+  s.preconditioned.resize(n);
+  s.direction.resize(n);
+  s.product.resize(n);
+  s.impulse.assign(n, 0.0);
+  // out = J W Jᵀ x over the rows.
+  auto multiply = [&](const std::vector<double>& x, std::vector<double>& out) {
+    for (const SweptEdgeSolveScratch::Edge& e : s.edges) s.onNodes[e.node[0]] = s.onNodes[e.node[1]] = Vec3::Zero();
+    for (size_t i = 0; i < n; ++i) {
+      const SweptEdgeSolveScratch::Edge& e = s.edges[i];
+      s.onNodes[e.node[0]] -= x[i] * e.response[0];
+      s.onNodes[e.node[1]] += x[i] * e.response[1];
+    }
+    for (size_t i = 0; i < n; ++i) {
+      const SweptEdgeSolveScratch::Edge& e = s.edges[i];
+      out[i] = e.n.dot(s.onNodes[e.node[1]] - s.onNodes[e.node[0]]);
+    }
+  };
+  double rz = 0.0, start = 0.0;
+  for (size_t i = 0; i < n; ++i) start += s.residual[i] * s.residual[i];
+  preconditionSweptEdges(s, s.residual, s.preconditioned);
+  for (size_t i = 0; i < n; ++i) {
+    s.direction[i] = s.preconditioned[i];
+    rz += s.residual[i] * s.preconditioned[i];
+  }
+  for (int iteration = 0; iteration < iterations && rz > 0.0; ++iteration) {
+    multiply(s.direction, s.product);
+    double curvature = 0.0;
+    for (size_t i = 0; i < n; ++i) curvature += s.direction[i] * s.product[i];
+    if (curvature <= 0.0) break;  // a direction in A's null space: nothing left to solve there
+    const double alpha = rz / curvature;
+    double next = 0.0, left = 0.0;
+    for (size_t i = 0; i < n; ++i) {
+      s.impulse[i] += alpha * s.direction[i];
+      s.residual[i] -= alpha * s.product[i];
+      left += s.residual[i] * s.residual[i];
+    }
+    if (left <= tolerance * tolerance * start || iteration + 1 == iterations) break;
+    preconditionSweptEdges(s, s.residual, s.preconditioned);
+    for (size_t i = 0; i < n; ++i) next += s.residual[i] * s.preconditioned[i];
+    const double beta = next / rz;
+    rz = next;
+    for (size_t i = 0; i < n; ++i) s.direction[i] = s.preconditioned[i] + beta * s.direction[i];
+  }
+}
+
 inline void solveSweptEdgesTogether(std::span<InextensibilityRow> rows, std::span<const int32_t> swept,
                                     SolverContext& ctx, SweptEdgeSolveScratch& s) {
   // The rows' Jacobians, masses and bounds are set once per (sub)step, so the list made in its
@@ -126,80 +198,25 @@ inline void solveSweptEdgesTogether(std::span<InextensibilityRow> rows, std::spa
       s.edges.push_back({e,
                          {row.node[0], row.node[1]},
                          row.jacobian[1],
-                         {ctx.inverseMass[row.node[0]], ctx.inverseMass[row.node[1]]},
+                         {ctx.inverseMass[row.node[0]] * row.jacobian[1], ctx.inverseMass[row.node[1]] * row.jacobian[1]},
                          row.effectiveMass});
     }
   }
   const size_t n = s.edges.size();
   if (n == 0) return;
   // The coarse level: its patches made when the edges change, its matrix in each (sub)step.
-  if (ctx.iteration == 0) {
-    s.edgeNodes.resize(n);
-    s.directions.resize(n);
-    for (size_t i = 0; i < n; ++i) {
-      s.edgeNodes[i] = {s.edges[i].node[0], s.edges[i].node[1]};
-      s.directions[i] = s.edges[i].n;
-    }
-    if (s.edgeNodes != s.coarse.edgeNodes) aggregateSweptEdges(s.edgeNodes, s.coarse);
-    buildSweptEdgeCoarse(s.directions, ctx.inverseMass, s.coarse);
-  }
-  if (s.smoothedOnNodes.size() < ctx.velocity.size()) s.smoothedOnNodes.resize(ctx.velocity.size());
-  s.coarseResidual.resize(n);
-  s.coarseCorrection.resize(n);
+  if (ctx.iteration == 0) prepareSweptEdgeCoarse(s, ctx.inverseMass);
   s.residual.resize(n);
-  s.preconditioned.resize(n);
-  s.direction.resize(n);
-  s.product.resize(n);
-  s.impulse.assign(n, 0.0);
-  if (s.onNodes.size() < ctx.velocity.size()) s.onNodes.resize(ctx.velocity.size());
-  // out = J W Jᵀ x over the rows.
-  auto multiply = [&](const std::vector<double>& x, std::vector<double>& out) {
-    for (const SweptEdgeSolveScratch::Edge& e : s.edges) s.onNodes[e.node[0]] = s.onNodes[e.node[1]] = Vec3::Zero();
-    for (size_t i = 0; i < n; ++i) {
-      const SweptEdgeSolveScratch::Edge& e = s.edges[i];
-      s.onNodes[e.node[0]] -= (x[i] * e.inverseMass[0]) * e.n;
-      s.onNodes[e.node[1]] += (x[i] * e.inverseMass[1]) * e.n;
-    }
-    for (size_t i = 0; i < n; ++i) {
-      const SweptEdgeSolveScratch::Edge& e = s.edges[i];
-      out[i] = e.n.dot(s.onNodes[e.node[1]] - s.onNodes[e.node[0]]);
-    }
-  };
-  double rz = 0.0, start = 0.0;
   for (size_t i = 0; i < n; ++i) {
     const SweptEdgeSolveScratch::Edge& e = s.edges[i];
     s.residual[i] = -(rows[static_cast<size_t>(e.row)].bias + e.n.dot(ctx.velocity[e.node[1]] - ctx.velocity[e.node[0]]));
-    start += s.residual[i] * s.residual[i];
   }
-  preconditionSweptEdges(s, s.residual, s.preconditioned);
-  for (size_t i = 0; i < n; ++i) {
-    s.direction[i] = s.preconditioned[i];
-    rz += s.residual[i] * s.preconditioned[i];
-  }
-  for (int iteration = 0; iteration < kEdgeSolveIterations && rz > 0.0; ++iteration) {
-    multiply(s.direction, s.product);
-    double curvature = 0.0;
-    for (size_t i = 0; i < n; ++i) curvature += s.direction[i] * s.product[i];
-    if (curvature <= 0.0) break;  // a direction in A's null space: nothing left to solve there
-    const double alpha = rz / curvature;
-    double next = 0.0, left = 0.0;
-    for (size_t i = 0; i < n; ++i) {
-      s.impulse[i] += alpha * s.direction[i];
-      s.residual[i] -= alpha * s.product[i];
-      left += s.residual[i] * s.residual[i];
-    }
-    if (left <= kEdgeSolveTolerance * kEdgeSolveTolerance * start || iteration + 1 == kEdgeSolveIterations) break;
-    preconditionSweptEdges(s, s.residual, s.preconditioned);
-    for (size_t i = 0; i < n; ++i) next += s.residual[i] * s.preconditioned[i];
-    const double beta = next / rz;
-    rz = next;
-    for (size_t i = 0; i < n; ++i) s.direction[i] = s.preconditioned[i] + beta * s.direction[i];
-  }
+  solveSweptEdgeSystem(s, ctx.velocity.size(), kEdgeSolveIterations);
   for (size_t i = 0; i < n; ++i) {
     const SweptEdgeSolveScratch::Edge& e = s.edges[i];
     rows[static_cast<size_t>(e.row)].lambda += s.impulse[i];
-    ctx.velocity[e.node[0]] -= (s.impulse[i] * e.inverseMass[0]) * e.n;
-    ctx.velocity[e.node[1]] += (s.impulse[i] * e.inverseMass[1]) * e.n;
+    ctx.velocity[e.node[0]] -= s.impulse[i] * e.response[0];
+    ctx.velocity[e.node[1]] += s.impulse[i] * e.response[1];
   }
 }
 
