@@ -154,8 +154,10 @@ struct World::Impl final : bullet::SolverHooks {
   explicit Impl(const WorldSettings& s) : settings(s), bullet(s.gravity) {}
 
   SolverContext context() {
-    return {nodes.velocity, nodes.inverseMass, rigid, substepLength, settings.solver.baumgarte / substepLength,
-            sweepStartVelocity};
+    SolverContext ctx{nodes.velocity, nodes.inverseMass, rigid, substepLength, settings.solver.baumgarte / substepLength,
+                      sweepStartVelocity};
+    ctx.iterations = settings.solver.iterations;
+    return ctx;
   }
 
   // ---- Substeps ---------------------------------------------------------------------------

@@ -142,9 +142,10 @@ struct SolverContext {
   // The nodes' velocities before the warm start: what the swept edges' geometric stiffness
   // measures the rows' velocity change from (constraints/inextensibility.h).
   std::span<const Vec3> startVelocity = {};
-  // Which of the (sub)step's sweeps this is, from 0 (solver/swept_edge_solve.h runs in the first two
-  // and makes its list of rows in the first).
+  // Which of the (sub)step's K sweeps this is, from 0 (solver/swept_edge_solve.h runs in the first
+  // two but not the last, and makes its list of rows in the first).
   int iteration = 0;
+  int iterations = 1;  // K
 };
 
 // Accumulates Δλ² over a sweep for the RMS reported per iteration.
