@@ -154,7 +154,11 @@ struct World::Impl final : bullet::SolverHooks {
   explicit Impl(const WorldSettings& s) : settings(s), bullet(s.gravity) {}
 
   SolverContext context() {
-    SolverContext ctx{nodes.velocity, nodes.inverseMass, rigid, substepLength, settings.solver.baumgarte / substepLength,
+    SolverContext ctx{nodes.velocity,
+                      nodes.inverseMass,
+                      rigid,
+                      substepLength,
+                      settings.solver.baumgarte / substepLength,
                       sweepStartVelocity};
     ctx.iterations = settings.solver.iterations;
     return ctx;

@@ -17,15 +17,14 @@
 //
 // symmetric and positive semi-definite (definite unless rows are redundant, where conjugate
 // gradients still converge in the range of A). In the first sweeps of each (sub)step
-// (sweepSolvesSweptEdges), kEdgeSolveIterations steps of conjugate gradients preconditioned by a two-level
-// cycle (a Gauss-Seidel pass over the rows, each row's K = wᵢ + wⱼ the diagonal whose inverse it
-// keeps as its effective mass; the coarse correction over patches of uniform membrane stress,
-// solver/swept_edge_coarse.h; a pass back) solve it from Δλ = 0 against the velocities as the
-// sweep finds them, each iteration a product with A (Jᵀ p onto the nodes, then J back) and a
-// cycle; then λ += Δλ and v += W Jᵀ Δλ. Conjugate
-// gradients reduce the error in A's energy norm monotonically, over the whole sheet at once
-// (the error after k steps is bounded by a Chebyshev polynomial in A's condition number), so
-// they do not overshoot as over-relaxation does; the Gauss-Seidel pass that follows in the same
+// (sweepSolvesSweptEdges), kEdgeSolveIterations steps of conjugate gradients preconditioned by a
+// two-level cycle (a Gauss-Seidel pass over the rows, each row's K = wᵢ + wⱼ the diagonal whose
+// inverse it keeps as its effective mass; the coarse correction over patches of uniform membrane
+// stress, solver/swept_edge_coarse.h; a pass back) solve it from Δλ = 0 against the velocities
+// as the sweep finds them, each iteration a product with A (Jᵀ p onto the nodes, then J back)
+// and a cycle; then λ += Δλ and v += W Jᵀ Δλ. Conjugate gradients reduce the error in A's
+// energy norm monotonically, over the whole sheet at once (the error after k steps is bounded by
+// a Chebyshev polynomial in A's condition number), so they do not overshoot as over-relaxation does; the Gauss-Seidel pass that follows in the same
 // sweep (with each edge's geometric stiffness) smooths what they leave and takes the bounded
 // and one-sided rows. Every impulse is internal (Σ Jᵀ Δλ = 0 over an edge), so momentum is kept.
 //
@@ -131,8 +130,8 @@ inline void prepareSweptEdgeCoarse(SweptEdgeSolveScratch& s, std::span<const dou
 
 // A Δλ = r for the edges s.edges (A = J W Jᵀ) from Δλ = 0 into s.impulse, r given in
 // s.residual: `iterations` steps of conjugate gradients preconditioned by the two-level cycle
-// (their coarse level prepared), fewer once |r| has fallen by kEdgeSolveTolerance. `nodeCount`
-// bounds the nodes' indices.
+// (their coarse level prepared), fewer once |r| has fallen by `tolerance`. `nodeCount` bounds the
+// nodes' indices.
 inline void solveSweptEdgeSystem(SweptEdgeSolveScratch& s, size_t nodeCount, int iterations,
                                  double tolerance = kEdgeSolveTolerance) {
   const size_t n = s.edges.size();
