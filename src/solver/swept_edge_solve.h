@@ -26,7 +26,8 @@
 // energy norm monotonically, over the whole sheet at once (the error after k steps is bounded by
 // a Chebyshev polynomial in A's condition number), so they do not overshoot as over-relaxation
 // does; the Gauss-Seidel pass that follows in the same sweep (with each edge's geometric
-// stiffness) smooths what they leave and takes the bounded and one-sided rows. Every impulse is internal (Σ Jᵀ Δλ = 0 over an edge), so momentum is kept.
+// stiffness) smooths what they leave and takes the bounded and one-sided rows. Every impulse is
+// internal (Σ Jᵀ Δλ = 0 over an edge), so momentum is kept.
 //
 // Measured (`build/bench/gauntlet_study 2:1 4:1`, `tandem run scenes/cloth_sphere.json`): the
 // draped 51 × 51 cloth takes 5,500 strain-limiting passes in its first 100 steps instead of
