@@ -88,8 +88,10 @@ void World::Impl::limitStrainOfUnprojectedRows() {
       shape = {rigidShapes[b].get(), bullet.position(int(b)), bullet.orientation(int(b)), Vec3::Zero(), Vec3::Zero(), 0.0, 0.0};
       for (int32_t n = body.firstNode; n < body.firstNode + body.nodeCount; ++n) {
         const Vec3 local = shape.orientation.conjugate() * (nodes.position[n] - shape.position);
-        if (geometry::distanceToShape(*shape.shape, local, reach).distance < reach)
-          scratch.touching.push_back({n, &shape, body.collision.thickness, !bullet.isDynamic(int(b))});
+        const geometry::ShapeDistance near = geometry::distanceToShape(*shape.shape, local, reach);
+        if (near.distance < reach)
+          scratch.touching.push_back({n, &shape, body.collision.thickness, !bullet.isDynamic(int(b)), near.distance,
+                                      shape.orientation * near.normal});
       }
     }
   }

@@ -90,6 +90,10 @@ struct NodeOnShape {
   const CollisionRigid* rigid;
   double thickness;
   bool still;  // the shape's body does not move by impulses (static, kinematic or asleep)
+  // Its distance to the shape and the shape's outward normal there (world frame), as the list
+  // was made, before the passes.
+  double startDistance;
+  Vec3 startNormal;
 };
 
 // An edge as the passes read it: its nodes, the bounds it is kept within and each node's share
@@ -264,14 +268,9 @@ inline void limitStrain(std::span<const LimitedEdge> edges, std::span<const Node
   const bool sheets = std::any_of(edges.begin(), edges.end(), [](const LimitedEdge& edge) { return edge.inSheet; });
   if (sheets) {
     heldAlong.assign(x.size(), Vec3::Zero());
-    for (const NodeOnShape& contact : contacts) {
-      if (!contact.still) continue;
-      const CollisionRigid& body = *contact.rigid;
-      const Vec3 local = body.orientation.conjugate() * (x[contact.node] - body.position);
-      const geometry::ShapeDistance distance = geometry::distanceToShape(*body.shape, local, 2 * contact.thickness);
-      if (std::isfinite(distance.distance) && distance.distance < kStrainTouching * contact.thickness)
-        heldAlong[contact.node] = body.orientation * distance.normal;
-    }
+    for (const NodeOnShape& contact : contacts)
+      if (contact.still && contact.startDistance < kStrainTouching * contact.thickness)
+        heldAlong[contact.node] = contact.startNormal;
   }
   for (int pass = 0; pass < kStrainPassesAtMost; ++pass) {
     if (sheets && pass < kStrainPasses && pass % kSheetProjectionEvery == 0)
