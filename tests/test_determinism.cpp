@@ -43,7 +43,7 @@ void PrintTo(const Golden& golden, std::ostream* out) { *out << golden.file << "
 // clang-format off
 constexpr Golden kGolden[] = {
     {"rope_wheel.json", 30, 0xe92083332fb057feULL, 150, 0x2b8d3c83195d34ceULL},  // Bullet warm started with its whole impulses
-    {"cloth_sphere.json", 15, 0xc52ba9d857b47facULL, 60, 0x8544757ab4303c3dULL},  // sheets projected together
+    {"cloth_sphere.json", 15, 0x1159ea0b9e4ba454ULL, 60, 0x8f4b416aa4d1435fULL},  // sheets projected only past the passes' tolerance
     {"jelly_dish.json", 9, 0xa932ff4052a58532ULL, 60, 0x00a05e407d4acca4ULL},  // FEM and spring stiffness blocks summed per node pair
 };
 // clang-format on

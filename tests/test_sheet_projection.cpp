@@ -85,7 +85,8 @@ TEST(SheetProjection, OneConvergedStepTakesMostOfTheStretchOut) {
   const double before = sheet.worstExcess();
   std::vector<Vec3> reaction(sheet.position.size(), Vec3::Zero()), heldAlong = reaction;
   SweptEdgeSolveScratch scratch;
-  projectSheetEdgesTogether(sheet.edges, sheet.weight, heldAlong, sheet.position, reaction, scratch, true, 400, 1e-6);
+  bool coarseBuilt = false;
+  projectSheetEdgesTogether(sheet.edges, sheet.weight, heldAlong, sheet.position, reaction, scratch, coarseBuilt, 400, 1e-6);
   EXPECT_LT(sheet.worstExcess(), 0.02 * before) << sheet.worstExcess() << " of " << before;  // 0.3 % of it left
 }
 
@@ -99,7 +100,8 @@ TEST(SheetProjection, MovesANodeOnAStillShapeOnlyInItsTangentPlane) {
   heldAlong[middle] = normal;
   const Vec3 start = sheet.position[middle];
   SweptEdgeSolveScratch scratch;
-  projectSheetEdgesTogether(sheet.edges, sheet.weight, heldAlong, sheet.position, reaction, scratch, true);
+  bool coarseBuilt = false;
+  projectSheetEdgesTogether(sheet.edges, sheet.weight, heldAlong, sheet.position, reaction, scratch, coarseBuilt);
   const Vec3 moved = sheet.position[middle] - start;
   EXPECT_GT(moved.norm(), 1e-5);
   EXPECT_LT(std::abs(moved.dot(normal)), 1e-12);

@@ -217,16 +217,24 @@ inline void keepFaceOffCore(const FaceOnCore& face, std::span<const double> weig
 // correction crosses the whole sheet at once instead of an edge per pass. A node touching a
 // still shape moves only in its tangent plane in this step (W = w (I − s sᵀ) with the shape's
 // normal s, `heldAlong`), as the push-outs would put it back there. The coarse level is built
-// for the edges' directions when `buildCoarse` (the stage's first call) and kept for the others
-// (a preconditioner need not be exact).
+// for the edges' directions in the stage's first projection (`coarseBuilt` false; it is set) and
+// kept for the others (a preconditioner need not be exact), unless the edges have changed.
+// Nothing is done unless some edge is past a bound by more than the passes' convergence
+// (kStrainConverged of its length): at rest one pass is all a draped cloth needs, and building
+// the coarse level for it was a quarter of the paper's cloth's step.
 inline void projectSheetEdgesTogether(std::span<const LimitedEdge> edges, std::span<const double> weight,
                                       std::span<const Vec3> heldAlong, std::span<Vec3> x, std::span<Vec3> reaction,
-                                      SweptEdgeSolveScratch& s, bool buildCoarse,
+                                      SweptEdgeSolveScratch& s, bool& coarseBuilt,
                                       int iterations = kSheetProjectionIterations,
                                       double tolerance = kSheetProjectionTolerance) {
+  const bool violated = std::any_of(edges.begin(), edges.end(), [&](const LimitedEdge& edge) {
+    if (!edge.inSheet) return false;
+    const double length = (x[edge.node[1]] - x[edge.node[0]]).norm();
+    return std::abs(std::clamp(length, edge.shortest, edge.longest) - length) > kStrainConverged * edge.restLength;
+  });
+  if (!violated) return;
   s.edges.clear();
   s.residual.clear();
-  bool violated = false;
   for (size_t k = 0; k < edges.size(); ++k) {
     const LimitedEdge& edge = edges[k];
     if (!edge.inSheet) continue;
@@ -244,10 +252,15 @@ inline void projectSheetEdgesTogether(std::span<const LimitedEdge> edges, std::s
     s.edges.push_back({static_cast<int32_t>(k), {edge.node[0], edge.node[1]}, n, {response0, response1}, 1.0 / diagonal});
     const double target = std::clamp(length, edge.shortest, edge.longest);
     s.residual.push_back(target - length);
-    violated = violated || target != length;
   }
-  if (!violated) return;
-  if (buildCoarse || !s.coarse.factor.ready) prepareSweptEdgeCoarse(s, weight, heldAlong);
+  const bool sameEdges = s.edges.size() == s.coarse.edgeNodes.size() &&
+                         std::equal(s.edges.begin(), s.edges.end(), s.coarse.edgeNodes.begin(), [](const auto& e, const auto& nodes) {
+                           return e.node[0] == nodes[0] && e.node[1] == nodes[1];
+                         });
+  if (!coarseBuilt || !sameEdges || !s.coarse.factor.ready) {
+    prepareSweptEdgeCoarse(s, weight, heldAlong);
+    coarseBuilt = true;
+  }
   solveSweptEdgeSystem(s, x.size(), iterations, tolerance);
   for (size_t i = 0; i < s.edges.size(); ++i) {
     const SweptEdgeSolveScratch::Edge& e = s.edges[i];
@@ -272,9 +285,10 @@ inline void limitStrain(std::span<const LimitedEdge> edges, std::span<const Node
       if (contact.still && contact.startDistance < kStrainTouching * contact.thickness)
         heldAlong[contact.node] = contact.startNormal;
   }
+  bool coarseBuilt = false;
   for (int pass = 0; pass < kStrainPassesAtMost; ++pass) {
     if (sheets && pass < kStrainPasses && pass % kSheetProjectionEvery == 0)
-      projectSheetEdgesTogether(edges, weight, heldAlong, x, reaction, together, pass == 0);
+      projectSheetEdgesTogether(edges, weight, heldAlong, x, reaction, together, coarseBuilt);
     double worst = 0.0;
     for (const LimitedEdge& edge : edges) worst = std::max(worst, limitEdge(edge, x, reaction));
     const bool last = worst < kStrainConverged || (pass >= kStrainPasses && worst < kStrainStillTooFar) ||
