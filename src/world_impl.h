@@ -140,6 +140,12 @@ struct World::Impl final : bullet::SolverHooks {
     SweptEdgeSolveScratch together;      // of the edges' projection together
     std::vector<Vec3> heldAlong;         // per node: the normal of the still shape it touches, or zero
     std::vector<char> sheet;             // per deformable: its edges are projected together
+    std::vector<MovingBody> movingBodies;  // dynamic bodies the sheets touch, moved with them
+    std::vector<int32_t> movingBodyNode;   // per rigid body: its index among `positions`, or −1
+    std::vector<char> touchesRigid;        // per rigid body: in a contact with another
+    std::vector<char> anchoredToDynamic;   // per deformable
+    std::vector<SheetContact> sheetContacts;  // the step's contacts between those and the sheets
+    std::vector<Vec3> positions;         // the nodes', then those bodies' centres
   } strainScratch;
   PositionBasedScratch paradigmScratch;  // of applyParadigm
   ImplicitSolveScratch implicitScratch;  // of solveImplicitVelocities

@@ -108,16 +108,73 @@ void World::Impl::limitStrainOfUnprojectedRows() {
                              form.radius + deformableOfNode(row.node[0]).collision.thickness, row.normal});
   }
   // The sheets projected together too (strain_limiting.h): surfaces without volume whose faces
-  // leave some node inside them (a ribbon two nodes wide has none: it is a rope), touching no
-  // moving body in this step (the projection does not hold a moving body's contacts: on a taut
-  // sheet it flattened the dent a dropped capsule made, into the capsule, and the passes turned
-  // that into velocity that threw it; docs/solver.md, nineteenth session).
+  // leave some node inside them (a ribbon two nodes wide has none: it is a rope). A dynamic body
+  // a sheet touches is moved with it, one more node (after the nodes), if it is a free sphere
+  // touching nothing rigid: the projection moves it by translation alone and keeps its contact
+  // rows' normals, which a turning box's corners do not keep (a pile of boxes on a hammock was
+  // thrown), and a body moved into another would be pushed out again by Bullet. A sheet touching
+  // another dynamic body, or anchored to one while it touches a moving body (a cloth hung from a
+  // falling body tangled, and the projection threw it: SceneFile.WrittenAndReadBackStepsBitForBit),
+  // is left to the passes: the projection would flatten its dent into the body, and the passes'
+  // velocity update throw it (docs/solver.md, nineteenth session).
   scratch.sheet.assign(deformables.size(), 0);
+  scratch.positions.assign(nodes.position.begin(), nodes.position.end());
+  scratch.movingBodies.clear();
+  scratch.movingBodyNode.assign(bodyCount, -1);
+  scratch.touchesRigid.assign(bodyCount, 0);
+  for (const bullet::BulletWorld::ContactPoint& point : bullet.contactPoints())
+    for (int32_t b : {point.bodyA, point.bodyB})
+      if (b >= 0) scratch.touchesRigid[static_cast<size_t>(b)] = 1;
+  auto movable = [&](size_t b) {
+    return rigid[b].inverseMass > 0.0 && !rigid[b].isJointed() && !scratch.touchesRigid[b] &&
+           rigidShapes[b]->shape.type == ShapeType::Sphere;
+  };
+  std::vector<char>& anchored = scratch.anchoredToDynamic;
+  anchored.assign(deformables.size(), 0);
+  for (const AnchorRow& row : rows.anchors)
+    if (holdsByBody(row)) anchored[deformableIndexOfNode(row.node[0])] = 1;
   for (size_t d = 0; d < deformables.size(); ++d) {
-    bool touchesMovingBody = false;
-    for (size_t b = 0; b < bodyCount; ++b)
-      touchesMovingBody = touchesMovingBody || (scratch.touched[d * bodyCount + b] && bullet.isDynamic(int(b)));
-    scratch.sheet[d] = scratch.limitedBody[d] && deformables[d].hasInteriorSurfaceNodes && !touchesMovingBody;
+    bool touchesMovingBody = false, touchesFixedBody = false;
+    for (size_t b = 0; b < bodyCount; ++b) {
+      if (!scratch.touched[d * bodyCount + b] || !bullet.isDynamic(int(b))) continue;
+      touchesMovingBody = true;
+      touchesFixedBody = touchesFixedBody || !movable(b);
+    }
+    scratch.sheet[d] = scratch.limitedBody[d] && deformables[d].hasInteriorSurfaceNodes && !touchesFixedBody &&
+                       !(anchored[d] && touchesMovingBody);
+  }
+  for (size_t b = 0; b < bodyCount; ++b) {
+    bool touchedBySheet = false;
+    for (size_t d = 0; d < deformables.size(); ++d) touchedBySheet = touchedBySheet || (scratch.sheet[d] && scratch.touched[d * bodyCount + b]);
+    if (!touchedBySheet || !bullet.isDynamic(int(b))) continue;
+    scratch.movingBodyNode[b] = static_cast<int32_t>(scratch.positions.size());
+    scratch.movingBodies.push_back({scratch.movingBodyNode[b], &scratch.shapes[b]});
+    scratch.positions.push_back(scratch.shapes[b].position);
+    scratch.weight.push_back(rigid[b].inverseMass);
+  }
+  // Their contact rows with the sheets, as gaps linear in the positions (SheetContact): the row's
+  // gap at the step's start, moved on by the nodes' and the body's motion over the step.
+  scratch.sheetContacts.clear();
+  for (const ContactRow& row : rows.contacts) {
+    if (row.body < 0 || scratch.movingBodyNode[static_cast<size_t>(row.body)] < 0 || row.coefficient[3] != 0.0 ||
+        !scratch.sheet[deformableIndexOfNode(row.node[0])])
+      continue;
+    SheetContact contact{{row.node[0], row.node[1], row.node[2]}, {row.coefficient[0], row.coefficient[1], row.coefficient[2]},
+                         scratch.movingBodyNode[static_cast<size_t>(row.body)], row.normal, row.startGap};
+    const RigidPose& start = stepStartPoses[static_cast<size_t>(row.body)];
+    const Vec3 turned = (bullet.orientation(row.body) * start.orientation.conjugate()) * row.offset - row.offset;
+    contact.offset += row.normal.dot(start.centerOfMass - turned);
+    Vec3 moved = start.centerOfMass - bullet.position(row.body) - turned;  // the points' relative motion
+    for (int k = 0; k < 3; ++k) {
+      contact.offset -= row.normal.dot(row.coefficient[k] * stepStartPositions[row.node[k]]);
+      moved += row.coefficient[k] * (nodes.position[row.node[k]] - stepStartPositions[row.node[k]]);
+    }
+    // The row's normal stands for the surfaces only while the points have moved along it more
+    // than across it (a body going through the sheet); a node that slid along the body, or
+    // whipped round it, has left the row's reach.
+    if ((moved - row.normal * row.normal.dot(moved)).norm() > std::max(std::abs(row.normal.dot(moved)), settings.solver.contactSlop))
+      continue;
+    scratch.sheetContacts.push_back(contact);
   }
   scratch.edges.clear();
   for (int32_t r : scratch.rows)
@@ -130,13 +187,26 @@ void World::Impl::limitStrainOfUnprojectedRows() {
       edge.inSheet = scratch.sheet[deformableIndexOfNode(edge.node[0])];
       scratch.edges.push_back(edge);
     }
-  scratch.before = nodes.position;
+  scratch.before = scratch.positions;
   scratch.pushed.assign(nodes.size(), Vec3::Zero());
   scratch.reaction.assign(nodes.size(), Vec3::Zero());
-  limitStrain(scratch.edges, scratch.touching, scratch.faces, scratch.weight, nodes.position, scratch.pushed,
-              scratch.reaction, scratch.together, scratch.heldAlong);
-  for (size_t n = 0; n < nodes.size(); ++n)
-    nodes.velocity[n] += (nodes.position[n] - scratch.before[n] - scratch.pushed[n]) / timeStep;
+  limitStrain(scratch.edges, scratch.touching, scratch.faces, scratch.weight, scratch.positions, scratch.pushed,
+              scratch.reaction, scratch.together, scratch.heldAlong, scratch.sheetContacts,
+              settings.solver.contactSlop, scratch.movingBodies);
+  for (size_t n = 0; n < nodes.size(); ++n) {
+    nodes.velocity[n] += (scratch.positions[n] - scratch.before[n] - scratch.pushed[n]) / timeStep;
+    nodes.position[n] = scratch.positions[n];
+  }
+  // A body the sheets moved keeps the move and takes it as velocity, as the nodes do: its
+  // momentum changes by what theirs did, the other way.
+  for (const MovingBody& body : scratch.movingBodies) {
+    const Vec3 move = scratch.positions[body.node] - scratch.before[body.node];
+    if (move.isZero()) continue;
+    const auto b = static_cast<int32_t>(body.rigid - scratch.shapes.data());
+    bullet.setPose(b, bullet.position(b) + move, bullet.orientation(b));
+    bullet.setLinearVelocity(b, bullet.linearVelocity(b) + move / timeStep);
+    rigid[b].impulse += move / (timeStep * rigid[b].inverseMass);
+  }
   for (AnchorRow& row : rows.anchors)
     for (int k = 0; k < 4; ++k)
       if (row.weight[k] != 0.0 && holdsByBody(row) && scratch.heldByBody[row.node[k]] &&

@@ -12,10 +12,10 @@ void World::Impl::beginStep() {
   for (AnchorRow& row : rows.anchors) row.stepImpulse.setZero();
   for (RigidSolverState& body : rigid) body.impulse = body.angularImpulse = Vec3::Zero();
   bullet.beginStep();
+  stepStartPoses.resize(static_cast<size_t>(bullet.rigidBodyCount()));  // also the sheets' contacts' start
+  for (int b = 0; b < bullet.rigidBodyCount(); ++b) stepStartPoses[b] = {bullet.position(b), bullet.orientation(b)};
   if (settings.solver.substeps == 1) return;  // what only the substeps read
   stepStartVelocities = nodes.velocity;
-  stepStartPoses.resize(static_cast<size_t>(bullet.rigidBodyCount()));
-  for (int b = 0; b < bullet.rigidBodyCount(); ++b) stepStartPoses[b] = {bullet.position(b), bullet.orientation(b)};
   fixedPointPaths.clear();
   for (const FixedPointRow& row : rows.fixedPoints) fixedPointPaths.push_back({row.previousTarget, row.target});
   grabPaths.clear();

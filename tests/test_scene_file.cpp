@@ -210,7 +210,7 @@ TEST(SceneFile, WrittenAndReadBackStepsBitForBit) {
   ASSERT_TRUE(buildScene(original, a).ok()) << buildScene(original, a).message();
   ASSERT_TRUE(buildScene(*reread, b).ok());
   for (int step = 0; step < 60; ++step) {
-    ASSERT_TRUE(a.step(original.timeStep).ok());
+    { auto st = a.step(original.timeStep); ASSERT_TRUE(st.ok()) << "step " << step << ": " << st.message(); }
     ASSERT_TRUE(b.step(reread->timeStep).ok());
   }
   const std::vector<Vec3> nodesA = allNodes(a), nodesB = allNodes(b);

@@ -206,6 +206,33 @@ inline void keepFaceOffCore(const FaceOnCore& face, std::span<const double> weig
   }
 }
 
+// A dynamic body that a sheet touches, moved by the sheets' projection as one more node: its index
+// in the passes' positions and weights (past the nodes'; its weight is its inverse mass, its
+// position its centre of mass, translation only) and its shape, kept where the projection moves it.
+struct MovingBody {
+  int32_t node;
+  CollisionRigid* rigid;
+};
+
+// A contact row of this step between a sheet and a moving body, as a gap linear in the positions:
+// g = offset + n · (Σ cₖ xₖ − x_b), with the row's normal n and coefficients cₖ (nodes on the
+// sheet), x_b the body's position among the passes' (MovingBody::node), and the offset making g
+// the row's gap at the step's start plus what the step's motion, the body's turn included, did
+// to it. A row keeps the side it was found on: a body that went through the sheet in the step
+// has g < 0 however far it went.
+struct SheetContact {
+  std::array<int32_t, 3> node;
+  std::array<double, 3> coefficient;
+  int32_t body;
+  Vec3 normal;
+  double offset;
+  double gap(std::span<const Vec3> x) const {
+    Vec3 point = -x[static_cast<size_t>(body)];
+    for (int k = 0; k < 3; ++k) point += coefficient[k] * x[static_cast<size_t>(node[k])];
+    return offset + normal.dot(point);
+  }
+};
+
 // The sheets' limited edges projected together, once (fast projection's Newton step): each edge
 // past a bound is to come back to it and each within its bounds to keep its length, to first
 // order in the moves Δx = W Jᵀ δλ,
@@ -216,25 +243,42 @@ inline void keepFaceOffCore(const FaceOnCore& face, std::span<const double> weig
 // (fewer once the residual has fallen by `tolerance`; solver/swept_edge_solve.h), so that a
 // correction crosses the whole sheet at once instead of an edge per pass. A node touching a
 // still shape moves only in its tangent plane in this step (W = w (I − s sᵀ) with the shape's
-// normal s, `heldAlong`), as the push-outs would put it back there. The coarse level is built
-// for the edges' directions in the stage's first projection (`coarseBuilt` false; it is set) and
-// kept for the others (a preconditioner need not be exact), unless the edges have changed.
-// Nothing is done unless some edge is past a bound by more than the passes' convergence
-// (kStrainConverged of its length): at rest one pass is all a draped cloth needs, and building
-// the coarse level for it was a quarter of the paper's cloth's step.
+// normal s, `heldAlong`), as the push-outs would put it back there. The step's contacts with
+// moving bodies that are closed past their gap (`contacts`, g < −slop, the slop the contact rows
+// leave) are rows of the same system, to open to g = −slop, each moving its nodes and the body (`bodies`, translation only): a body
+// dropped or thrown on a taut sheet is held by the sheet's edges at once, the dent and the body's
+// place found together (without them the projection flattened the dent into the body, or left
+// the body on the far side, and the passes' velocity update threw it; docs/solver.md). The coarse
+// level is built for the edges' directions in the stage's first projection (`coarseBuilt` false;
+// it is set) and kept for the others (a preconditioner need not be exact), unless the edges have
+// changed; the contact rows have no coarse part. Nothing is done unless some edge is past a bound
+// by more than the passes' convergence (kStrainConverged of its length), or some contact closed
+// past its gap by twice the slop: at rest one pass is all a draped cloth needs, and
+// building the coarse level for it was a quarter of the paper's cloth's step.
 inline void projectSheetEdgesTogether(std::span<const LimitedEdge> edges, std::span<const double> weight,
                                       std::span<const Vec3> heldAlong, std::span<Vec3> x, std::span<Vec3> reaction,
                                       SweptEdgeSolveScratch& s, bool& coarseBuilt,
                                       int iterations = kSheetProjectionIterations,
-                                      double tolerance = kSheetProjectionTolerance) {
-  const bool violated = std::any_of(edges.begin(), edges.end(), [&](const LimitedEdge& edge) {
-    if (!edge.inSheet) return false;
-    const double length = (x[edge.node[1]] - x[edge.node[0]]).norm();
-    return std::abs(std::clamp(length, edge.shortest, edge.longest) - length) > kStrainConverged * edge.restLength;
-  });
+                                      double tolerance = kSheetProjectionTolerance,
+                                      std::span<const SheetContact> contacts = {}, double contactSlop = 0.0,
+                                      std::span<const MovingBody> bodies = {}) {
+  const bool violated =
+      std::any_of(edges.begin(), edges.end(),
+                  [&](const LimitedEdge& edge) {
+                    if (!edge.inSheet) return false;
+                    const double length = (x[edge.node[1]] - x[edge.node[0]]).norm();
+                    return std::abs(std::clamp(length, edge.shortest, edge.longest) - length) > kStrainConverged * edge.restLength;
+                  }) ||
+      std::any_of(contacts.begin(), contacts.end(), [&](const SheetContact& contact) { return contact.gap(x) < -2 * contactSlop; });
   if (!violated) return;
   s.edges.clear();
+  s.stars.clear();
   s.residual.clear();
+  s.starResidual.clear();
+  auto response = [&](int32_t node, const Vec3& n) -> Vec3 {
+    const Vec3& held = heldAlong[static_cast<size_t>(node)];
+    return weight[static_cast<size_t>(node)] * (n - held * held.dot(n));
+  };
   for (size_t k = 0; k < edges.size(); ++k) {
     const LimitedEdge& edge = edges[k];
     if (!edge.inSheet) continue;
@@ -242,18 +286,30 @@ inline void projectSheetEdgesTogether(std::span<const LimitedEdge> edges, std::s
     const double length = d.norm();
     if (length < 1e-12) continue;
     const Vec3 n = d / length;
-    auto response = [&](int32_t node) -> Vec3 {
-      const Vec3& held = heldAlong[static_cast<size_t>(node)];
-      return weight[static_cast<size_t>(node)] * (n - held * held.dot(n));
-    };
-    const Vec3 response0 = response(edge.node[0]), response1 = response(edge.node[1]);
+    const Vec3 response0 = response(edge.node[0], n), response1 = response(edge.node[1], n);
     const double diagonal = n.dot(response0 + response1);
     if (!(diagonal > 1e-3 * (weight[edge.node[0]] + weight[edge.node[1]]))) continue;  // held along it
     s.edges.push_back({static_cast<int32_t>(k), {edge.node[0], edge.node[1]}, n, {response0, response1}, 1.0 / diagonal});
-    const double target = std::clamp(length, edge.shortest, edge.longest);
-    s.residual.push_back(target - length);
+    s.residual.push_back(std::clamp(length, edge.shortest, edge.longest) - length);
   }
-  const bool sameEdges = s.edges.size() == s.coarse.edgeNodes.size() &&
+  const size_t sheetRows = s.edges.size();
+  for (const SheetContact& contact : contacts) {
+    const double gap = contact.gap(x) + contactSlop;
+    if (gap >= 0.0) continue;
+    SweptEdgeSolveScratch::Star star{{contact.node[0], contact.node[1], contact.node[2], contact.body}, {}, {}, 0.0};
+    double diagonal = 0.0;
+    for (int k = 0; k < 4; ++k) {
+      star.j[k] = k < 3 ? Vec3(contact.coefficient[k] * contact.normal) : Vec3(-contact.normal);
+      star.response[k] = response(star.node[k], star.j[k]);
+      diagonal += star.j[k].dot(star.response[k]);
+    }
+    if (!(diagonal > 0.0)) continue;
+    star.effectiveMass = 1.0 / diagonal;
+    s.stars.push_back(star);
+    s.starResidual.push_back(-gap);
+  }
+  s.residual.insert(s.residual.end(), s.starResidual.begin(), s.starResidual.end());
+  const bool sameEdges = sheetRows == s.coarse.edgeNodes.size() &&
                          std::equal(s.edges.begin(), s.edges.end(), s.coarse.edgeNodes.begin(), [](const auto& e, const auto& nodes) {
                            return e.node[0] == nodes[0] && e.node[1] == nodes[1];
                          });
@@ -262,7 +318,7 @@ inline void projectSheetEdgesTogether(std::span<const LimitedEdge> edges, std::s
     coarseBuilt = true;
   }
   solveSweptEdgeSystem(s, x.size(), iterations, tolerance);
-  for (size_t i = 0; i < s.edges.size(); ++i) {
+  for (size_t i = 0; i < sheetRows; ++i) {
     const SweptEdgeSolveScratch::Edge& e = s.edges[i];
     x[e.node[0]] -= s.impulse[i] * e.response[0];
     x[e.node[1]] += s.impulse[i] * e.response[1];
@@ -270,14 +326,19 @@ inline void projectSheetEdgesTogether(std::span<const LimitedEdge> edges, std::s
     if (edge.heldByBody >= 0)  // −m Δx of the other end
       reaction[edge.heldByBody] += (edge.heldByBody == edge.node[0] ? -s.impulse[i] : s.impulse[i]) * e.n;
   }
+  for (size_t i = 0; i < s.stars.size(); ++i)
+    for (int k = 0; k < 4; ++k) x[s.stars[i].node[k]] += s.impulse[sheetRows + i] * s.stars[i].response[k];
+  for (const MovingBody& body : bodies) body.rigid->position = x[static_cast<size_t>(body.node)];
 }
 
 // (The projections are not added to the rows' λ: warm started with them, the sweep applied them
 // a second time and a draped cloth slid off its sphere.)
+// `x` and `weight` may go on past the nodes with `bodies`' centres and inverse masses (above).
 inline void limitStrain(std::span<const LimitedEdge> edges, std::span<const NodeOnShape> contacts,
                         std::span<const FaceOnCore> faces, std::span<const double> weight, std::span<Vec3> x,
                         std::span<Vec3> pushed, std::span<Vec3> reaction, SweptEdgeSolveScratch& together,
-                        std::vector<Vec3>& heldAlong) {
+                        std::vector<Vec3>& heldAlong, std::span<const SheetContact> sheetContacts = {},
+                        double contactSlop = 0.0, std::span<const MovingBody> bodies = {}) {
   const bool sheets = std::any_of(edges.begin(), edges.end(), [](const LimitedEdge& edge) { return edge.inSheet; });
   if (sheets) {
     heldAlong.assign(x.size(), Vec3::Zero());
@@ -288,7 +349,8 @@ inline void limitStrain(std::span<const LimitedEdge> edges, std::span<const Node
   bool coarseBuilt = false;
   for (int pass = 0; pass < kStrainPassesAtMost; ++pass) {
     if (sheets && pass < kStrainPasses && pass % kSheetProjectionEvery == 0)
-      projectSheetEdgesTogether(edges, weight, heldAlong, x, reaction, together, coarseBuilt);
+      projectSheetEdgesTogether(edges, weight, heldAlong, x, reaction, together, coarseBuilt, kSheetProjectionIterations,
+                                kSheetProjectionTolerance, sheetContacts, contactSlop, bodies);
     double worst = 0.0;
     for (const LimitedEdge& edge : edges) worst = std::max(worst, limitEdge(edge, x, reaction));
     const bool last = worst < kStrainConverged || (pass >= kStrainPasses && worst < kStrainStillTooFar) ||

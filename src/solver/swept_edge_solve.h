@@ -71,7 +71,18 @@ struct SweptEdgeSolveScratch {
     double effectiveMass;
   };
   std::vector<Edge> edges;
-  std::vector<double> residual, preconditioned, direction, product, impulse;  // per row
+  // Rows of up to four nodes after the edges (a sheet's projection has its faces against a
+  // moving body's core): Jᵀ = jₖ at each node, W jₖ its response; an unused node's j is zero.
+  struct Star {
+    int32_t node[4];
+    Vec3 j[4];
+    Vec3 response[4];
+    double effectiveMass;
+  };
+  std::vector<Star> stars;
+  std::vector<double> starResidual;  // scratch of a caller building the stars' right-hand side
+  std::vector<double> residual, preconditioned, direction, product, impulse;  // per row: the edges', then the stars'
+  size_t rowCount() const { return edges.size() + stars.size(); }
   std::vector<Vec3> onNodes;  // W Jᵀ of a row vector, per node
   std::vector<std::array<int32_t, 2>> edgeNodes;  // the edges' nodes and directions, for the coarse level
   std::vector<Vec3> directions;
@@ -86,32 +97,47 @@ struct SweptEdgeSolveScratch {
 // coarse level built for them, and the scratch sized (smoothedOnNodes to the nodes, the two
 // coarse vectors to the edges).
 inline void preconditionSweptEdges(SweptEdgeSolveScratch& s, const std::vector<double>& r, std::vector<double>& z) {
-  const size_t n = s.edges.size();
+  const size_t n = s.edges.size(), m = s.rowCount();
   if (!s.coarse.factor.ready) {
     for (size_t i = 0; i < n; ++i) z[i] = s.edges[i].effectiveMass * r[i];
+    for (size_t i = n; i < m; ++i) z[i] = s.stars[i - n].effectiveMass * r[i];
     return;
   }
   std::vector<Vec3>& y = s.smoothedOnNodes;
   for (const SweptEdgeSolveScratch::Edge& e : s.edges) y[e.node[0]] = y[e.node[1]] = Vec3::Zero();
+  for (const SweptEdgeSolveScratch::Star& star : s.stars)
+    for (int32_t node : star.node) y[node] = Vec3::Zero();
   auto add = [&](size_t i, double delta) {
-    const SweptEdgeSolveScratch::Edge& e = s.edges[i];
     z[i] += delta;
+    if (i >= n) {
+      const SweptEdgeSolveScratch::Star& star = s.stars[i - n];
+      for (int k = 0; k < 4; ++k) y[star.node[k]] += delta * star.response[k];
+      return;
+    }
+    const SweptEdgeSolveScratch::Edge& e = s.edges[i];
     y[e.node[0]] -= delta * e.response[0];
     y[e.node[1]] += delta * e.response[1];
   };
   auto unmet = [&](size_t i) {
+    if (i >= n) {
+      const SweptEdgeSolveScratch::Star& star = s.stars[i - n];
+      double met = 0.0;
+      for (int k = 0; k < 4; ++k) met += star.j[k].dot(y[star.node[k]]);
+      return r[i] - met;
+    }
     const SweptEdgeSolveScratch::Edge& e = s.edges[i];
     return r[i] - e.n.dot(y[e.node[1]] - y[e.node[0]]);
   };
-  std::fill(z.begin(), z.begin() + static_cast<std::ptrdiff_t>(n), 0.0);
-  for (size_t i = 0; i < n; ++i) add(i, unmet(i) * s.edges[i].effectiveMass);
-  for (size_t i = 0; i < n; ++i) {
+  auto diagonal = [&](size_t i) { return i < n ? s.edges[i].effectiveMass : s.stars[i - n].effectiveMass; };
+  std::fill(z.begin(), z.begin() + static_cast<std::ptrdiff_t>(m), 0.0);
+  for (size_t i = 0; i < m; ++i) add(i, unmet(i) * diagonal(i));
+  for (size_t i = 0; i < m; ++i) {
     s.coarseResidual[i] = unmet(i);
     s.coarseCorrection[i] = 0.0;
   }
   applySweptEdgeCoarse(s.coarse, s.coarseResidual, s.coarseCorrection);
   for (size_t i = 0; i < n; ++i) add(i, s.coarseCorrection[i]);
-  for (size_t i = n; i-- > 0;) add(i, unmet(i) * s.edges[i].effectiveMass);
+  for (size_t i = m; i-- > 0;) add(i, unmet(i) * diagonal(i));
 }
 
 // The coarse level for s.edges: its patches made when the edges change, its matrix for their
@@ -135,7 +161,7 @@ inline void prepareSweptEdgeCoarse(SweptEdgeSolveScratch& s, std::span<const dou
 // nodes' indices.
 inline void solveSweptEdgeSystem(SweptEdgeSolveScratch& s, size_t nodeCount, int iterations,
                                  double tolerance = kEdgeSolveTolerance) {
-  const size_t n = s.edges.size();
+  const size_t edges = s.edges.size(), n = s.rowCount();
   if (s.smoothedOnNodes.size() < nodeCount) s.smoothedOnNodes.resize(nodeCount);
   if (s.onNodes.size() < nodeCount) s.onNodes.resize(nodeCount);
   s.coarseResidual.resize(n);
@@ -148,14 +174,22 @@ inline void solveSweptEdgeSystem(SweptEdgeSolveScratch& s, size_t nodeCount, int
   // out = J W Jᵀ x over the rows.
   auto multiply = [&](const std::vector<double>& x, std::vector<double>& out) {
     for (const SweptEdgeSolveScratch::Edge& e : s.edges) s.onNodes[e.node[0]] = s.onNodes[e.node[1]] = Vec3::Zero();
-    for (size_t i = 0; i < n; ++i) {
+    for (const SweptEdgeSolveScratch::Star& star : s.stars)
+      for (int32_t node : star.node) s.onNodes[node] = Vec3::Zero();
+    for (size_t i = 0; i < edges; ++i) {
       const SweptEdgeSolveScratch::Edge& e = s.edges[i];
       s.onNodes[e.node[0]] -= x[i] * e.response[0];
       s.onNodes[e.node[1]] += x[i] * e.response[1];
     }
-    for (size_t i = 0; i < n; ++i) {
+    for (size_t i = edges; i < n; ++i)
+      for (int k = 0; k < 4; ++k) s.onNodes[s.stars[i - edges].node[k]] += x[i] * s.stars[i - edges].response[k];
+    for (size_t i = 0; i < edges; ++i) {
       const SweptEdgeSolveScratch::Edge& e = s.edges[i];
       out[i] = e.n.dot(s.onNodes[e.node[1]] - s.onNodes[e.node[0]]);
+    }
+    for (size_t i = edges; i < n; ++i) {
+      out[i] = 0.0;
+      for (int k = 0; k < 4; ++k) out[i] += s.stars[i - edges].j[k].dot(s.onNodes[s.stars[i - edges].node[k]]);
     }
   };
   double rz = 0.0, start = 0.0;
@@ -201,6 +235,7 @@ inline void solveSweptEdgesTogether(std::span<InextensibilityRow> rows, std::spa
   // first sweep serves the next.
   if (ctx.iteration == 0) {
     s.edges.clear();
+    s.stars.clear();
     for (int32_t e : swept) {
       const InextensibilityRow& row = rows[static_cast<size_t>(e)];
       if (row.effectiveMass == 0.0 || !std::isinf(row.stepLambdaMin) || !std::isinf(row.stepLambdaMax)) continue;
