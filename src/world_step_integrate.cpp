@@ -134,13 +134,13 @@ void World::Impl::limitStrainOfUnprojectedRows() {
   for (const AnchorRow& row : rows.anchors)
     if (holdsByBody(row)) anchored[deformableIndexOfNode(row.node[0])] = 1;
   for (size_t d = 0; d < deformables.size(); ++d) {
-    bool touchesMovingBody = false, touchesFixedBody = false;
+    bool touchesMovingBody = false, touchesUnmovedBody = false;
     for (size_t b = 0; b < bodyCount; ++b) {
       if (!scratch.touched[d * bodyCount + b] || !bullet.isDynamic(int(b))) continue;
       touchesMovingBody = true;
-      touchesFixedBody = touchesFixedBody || !movable(b);
+      touchesUnmovedBody = touchesUnmovedBody || !movable(b);
     }
-    scratch.sheet[d] = scratch.limitedBody[d] && deformables[d].hasInteriorSurfaceNodes && !touchesFixedBody &&
+    scratch.sheet[d] = scratch.limitedBody[d] && deformables[d].hasInteriorSurfaceNodes && !touchesUnmovedBody &&
                        !(anchored[d] && touchesMovingBody);
   }
   for (size_t b = 0; b < bodyCount; ++b) {

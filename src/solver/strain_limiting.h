@@ -24,11 +24,14 @@
 // triangles brace them: a grid of edges without diagonals shears freely to first order, and the
 // step overshoots along those shears. Ribbons (a rope strip two nodes wide) are left out: a
 // coarse level of membrane stresses needs a sheet's interior, and with rope_wheel's strip in it
-// its light teapot crept faster. So are sheets touching a moving body: the step does not hold a
-// moving body's contacts, and on a taut sheet pinned on all sides it flattened the dent a
-// dropped capsule made into the capsule, which the passes turned into velocity that threw it
-// (the step's own linearisation fails there too: a taut sheet's edges lengthen only at second
-// order across it). Tried before: fast projection of all edges by Jacobi-preconditioned conjugate
+// its light teapot crept faster. A free sphere touching nothing rigid that a sheet touches is
+// moved with the sheet in the step, its contact rows rows of the same system (twenty-second
+// session: a ball dropped onto a swept pinned cloth, which fell through it, is held). Sheets
+// touching any other moving body are left out: the step would not hold that body's contacts (its
+// rows keep their normals, which a turning box's corners do not, and a body moved by translation
+// into another, or off its joint, is put back by Bullet), and on a taut sheet pinned on all sides
+// it flattened the dent a dropped capsule made into the capsule, which the passes turned into
+// velocity that threw it. Tried before: fast projection of all edges by Jacobi-preconditioned conjugate
 // gradients (it overshot on a taut sheet), ordering the edges outward from the held nodes (no
 // change), over-relaxation and long-range tethers (docs/architecture.md).
 //
@@ -245,16 +248,17 @@ struct SheetContact {
 // still shape moves only in its tangent plane in this step (W = w (I − s sᵀ) with the shape's
 // normal s, `heldAlong`), as the push-outs would put it back there. The step's contacts with
 // moving bodies that are closed past their gap (`contacts`, g < −slop, the slop the contact rows
-// leave) are rows of the same system, to open to g = −slop, each moving its nodes and the body (`bodies`, translation only): a body
-// dropped or thrown on a taut sheet is held by the sheet's edges at once, the dent and the body's
-// place found together (without them the projection flattened the dent into the body, or left
-// the body on the far side, and the passes' velocity update threw it; docs/solver.md). The coarse
-// level is built for the edges' directions in the stage's first projection (`coarseBuilt` false;
-// it is set) and kept for the others (a preconditioner need not be exact), unless the edges have
-// changed; the contact rows have no coarse part. Nothing is done unless some edge is past a bound
-// by more than the passes' convergence (kStrainConverged of its length), or some contact closed
-// past its gap by twice the slop: at rest one pass is all a draped cloth needs, and
-// building the coarse level for it was a quarter of the paper's cloth's step.
+// leave) are rows of the same system, to open to g = −slop, each moving its nodes and the body
+// (`bodies`, translation only): a ball dropped on a taut sheet is held by the sheet's edges at
+// once, the dent and the ball's place found together (without them the projection flattened the
+// dent into the body, or left the body on the far side, and the passes' velocity update threw
+// it; docs/solver.md). The coarse level is built for the edges' directions in the stage's first
+// projection (`coarseBuilt` false; it is set) and kept for the others (a preconditioner need not
+// be exact), unless the edges have changed; the contact rows have no coarse part. Nothing is done
+// unless some edge is past a bound by more than the passes' convergence (kStrainConverged of its
+// length), or some contact closed past its gap by twice the slop: at rest one pass is all a
+// draped cloth needs, and building the coarse level for it was a quarter of the paper's cloth's
+// step.
 inline void projectSheetEdgesTogether(std::span<const LimitedEdge> edges, std::span<const double> weight,
                                       std::span<const Vec3> heldAlong, std::span<Vec3> x, std::span<Vec3> reaction,
                                       SweptEdgeSolveScratch& s, bool& coarseBuilt,

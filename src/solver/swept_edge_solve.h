@@ -71,8 +71,9 @@ struct SweptEdgeSolveScratch {
     double effectiveMass;
   };
   std::vector<Edge> edges;
-  // Rows of up to four nodes after the edges (a sheet's projection has its faces against a
-  // moving body's core): Jᵀ = jₖ at each node, W jₖ its response; an unused node's j is zero.
+  // Rows of up to four nodes after the edges (a sheet's projection has its contacts with a moving
+  // body: up to three nodes of the sheet and the body's centre as a fourth): Jᵀ = jₖ at each
+  // node, W jₖ its response; an unused node's j is zero.
   struct Star {
     int32_t node[4];
     Vec3 j[4];
