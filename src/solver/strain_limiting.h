@@ -278,7 +278,6 @@ inline void projectSheetEdgesTogether(std::span<const LimitedEdge> edges, std::s
   s.edges.clear();
   s.stars.clear();
   s.residual.clear();
-  s.starResidual.clear();
   auto response = [&](int32_t node, const Vec3& n) -> Vec3 {
     const Vec3& held = heldAlong[static_cast<size_t>(node)];
     return weight[static_cast<size_t>(node)] * (n - held * held.dot(n));
@@ -310,9 +309,8 @@ inline void projectSheetEdgesTogether(std::span<const LimitedEdge> edges, std::s
     if (!(diagonal > 0.0)) continue;
     star.effectiveMass = 1.0 / diagonal;
     s.stars.push_back(star);
-    s.starResidual.push_back(-gap);
+    s.residual.push_back(-gap);  // after the edges', as the stars' rows come after theirs
   }
-  s.residual.insert(s.residual.end(), s.starResidual.begin(), s.starResidual.end());
   const bool sameEdges = sheetRows == s.coarse.edgeNodes.size() &&
                          std::equal(s.edges.begin(), s.edges.end(), s.coarse.edgeNodes.begin(), [](const auto& e, const auto& nodes) {
                            return e.node[0] == nodes[0] && e.node[1] == nodes[1];

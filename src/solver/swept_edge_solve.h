@@ -81,7 +81,6 @@ struct SweptEdgeSolveScratch {
     double effectiveMass;
   };
   std::vector<Star> stars;
-  std::vector<double> starResidual;  // scratch of a caller building the stars' right-hand side
   std::vector<double> residual, preconditioned, direction, product, impulse;  // per row: the edges', then the stars'
   size_t rowCount() const { return edges.size() + stars.size(); }
   std::vector<Vec3> onNodes;  // W Jᵀ of a row vector, per node
@@ -108,37 +107,40 @@ inline void preconditionSweptEdges(SweptEdgeSolveScratch& s, const std::vector<d
   for (const SweptEdgeSolveScratch::Edge& e : s.edges) y[e.node[0]] = y[e.node[1]] = Vec3::Zero();
   for (const SweptEdgeSolveScratch::Star& star : s.stars)
     for (int32_t node : star.node) y[node] = Vec3::Zero();
-  auto add = [&](size_t i, double delta) {
-    z[i] += delta;
-    if (i >= n) {
-      const SweptEdgeSolveScratch::Star& star = s.stars[i - n];
-      for (int k = 0; k < 4; ++k) y[star.node[k]] += delta * star.response[k];
-      return;
-    }
+  // The edges' rows and the stars' (rows n to m), each in loops of their own: the edges' are the
+  // cloth's hot path.
+  auto addEdge = [&](size_t i, double delta) {
     const SweptEdgeSolveScratch::Edge& e = s.edges[i];
+    z[i] += delta;
     y[e.node[0]] -= delta * e.response[0];
     y[e.node[1]] += delta * e.response[1];
   };
-  auto unmet = [&](size_t i) {
-    if (i >= n) {
-      const SweptEdgeSolveScratch::Star& star = s.stars[i - n];
-      double met = 0.0;
-      for (int k = 0; k < 4; ++k) met += star.j[k].dot(y[star.node[k]]);
-      return r[i] - met;
-    }
+  auto unmetEdge = [&](size_t i) {
     const SweptEdgeSolveScratch::Edge& e = s.edges[i];
     return r[i] - e.n.dot(y[e.node[1]] - y[e.node[0]]);
   };
-  auto diagonal = [&](size_t i) { return i < n ? s.edges[i].effectiveMass : s.stars[i - n].effectiveMass; };
+  auto addStar = [&](size_t i, double delta) {
+    const SweptEdgeSolveScratch::Star& star = s.stars[i - n];
+    z[i] += delta;
+    for (int k = 0; k < 4; ++k) y[star.node[k]] += delta * star.response[k];
+  };
+  auto unmetStar = [&](size_t i) {
+    const SweptEdgeSolveScratch::Star& star = s.stars[i - n];
+    double met = 0.0;
+    for (int k = 0; k < 4; ++k) met += star.j[k].dot(y[star.node[k]]);
+    return r[i] - met;
+  };
   std::fill(z.begin(), z.begin() + static_cast<std::ptrdiff_t>(m), 0.0);
-  for (size_t i = 0; i < m; ++i) add(i, unmet(i) * diagonal(i));
+  for (size_t i = 0; i < n; ++i) addEdge(i, unmetEdge(i) * s.edges[i].effectiveMass);
+  for (size_t i = n; i < m; ++i) addStar(i, unmetStar(i) * s.stars[i - n].effectiveMass);
   for (size_t i = 0; i < m; ++i) {
-    s.coarseResidual[i] = unmet(i);
+    s.coarseResidual[i] = i < n ? unmetEdge(i) : unmetStar(i);
     s.coarseCorrection[i] = 0.0;
   }
   applySweptEdgeCoarse(s.coarse, s.coarseResidual, s.coarseCorrection);
-  for (size_t i = 0; i < n; ++i) add(i, s.coarseCorrection[i]);
-  for (size_t i = m; i-- > 0;) add(i, unmet(i) * diagonal(i));
+  for (size_t i = 0; i < n; ++i) addEdge(i, s.coarseCorrection[i]);
+  for (size_t i = m; i-- > n;) addStar(i, unmetStar(i) * s.stars[i - n].effectiveMass);
+  for (size_t i = n; i-- > 0;) addEdge(i, unmetEdge(i) * s.edges[i].effectiveMass);
 }
 
 // The coarse level for s.edges: its patches made when the edges change, its matrix for their
