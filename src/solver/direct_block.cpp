@@ -332,6 +332,18 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
 
   m_factorOk = factorKept;
   factorise(true, true);
+  // The unit responses' storage, so that a step with a kept factorisation allocates nothing: it
+  // changes size only with the pattern, in a step that factorises anyway.
+  if (std::any_of(m_rows.begin(), m_rows.end(), [&](const BlockRowRef& ref) {
+        return ref.type == RowType::Contact && rows.contacts[ref.index].frictionInBlock;
+      })) {
+    const Eigen::Index size = m_dofCount + rowCount;
+    m_unitResponses.resize(size, kMaxUnitResponses);
+    m_releaseRhs.reserve(static_cast<size_t>(size * kMaxUnitResponses));
+    m_unitColumnOfDof.reserve(static_cast<size_t>(m_dofCount));
+    m_unitMissing.reserve(static_cast<size_t>(kMaxUnitResponses));
+    m_unitWeights.reserve(2 * kMaxFrictionContacts * 18);  // two tangents, four nodes and six body freedoms
+  }
 }
 
 void DirectBlock::factorise(bool mayKeep, bool reusable) {
@@ -354,6 +366,7 @@ void DirectBlock::factorise(bool mayKeep, bool reusable) {
     return;
   }
   m_factor->factorize(m_kkt);
+  ++m_factorGeneration;
   m_cachedRows.clear();
   m_keptRefinements = 1;
   m_factorOk = m_factor->info() == Eigen::Success;
@@ -527,7 +540,11 @@ void DirectBlock::solveWithFactor(const double* in, double* out, Eigen::Index wi
 // the bit.
 void DirectBlock::solveKktColumns(ColumnBlock& x, bool withReleased) const {
   solveWithFactor(x.data(), x.data(), x.cols());
-  if (!withReleased || m_releasedRows.empty()) return;
+  if (withReleased) dropReleasedEquations(x);
+}
+
+void DirectBlock::dropReleasedEquations(ColumnBlock& x) const {
+  if (m_releasedRows.empty()) return;
   for (Eigen::Index c = 0; c < x.cols(); ++c) {  // as solveKkt, a column at a time
     m_column = x.col(c);
     dropReleasedEquations(m_column);
@@ -798,7 +815,7 @@ void DirectBlock::computeFrictionResponses(const ConstraintRows& rows) {
   }
   // With a kept factorisation these are the exact responses of the system it was made for, a few
   // steps old: no refinement step (see the header, "Friction in the block's metric").
-  solveKktColumns(m_columns, true);
+  solveFrictionColumns(rows);
   // The solution's top is the velocity change Δv of the block's degrees of freedom (in a body's
   // free directions), its bottom −Δλ of the rows (a released row's, none).
   m_frictionImpulse = -m_columns.bottomRows(rowCount);
@@ -856,6 +873,59 @@ void DirectBlock::solveFriction(ConstraintRows& rows, SolverContext& ctx, Fricti
     stats.add(delta[0]);
     stats.add(delta[1]);
   }
+}
+
+void DirectBlock::solveFrictionColumns(const ConstraintRows& rows) {
+  const Eigen::Index size = m_dofCount + scalarRowCount();
+  if (m_factorFresh || m_unitGeneration != m_factorGeneration) {  // units of an older F are of no use
+    m_unitGeneration = m_factorGeneration;
+    m_unitCount = 0;
+    m_unitColumnOfDof.assign(static_cast<size_t>(m_dofCount), -1);
+  }
+  // A fresh factorisation may not be kept: its friction columns are solved as they are.
+  if (m_factorFresh) {
+    solveKktColumns(m_columns, true);
+    return;
+  }
+  m_unitMissing.clear();
+  for (const FrictionResponse& response : m_friction)
+    visitImpulseOnDofs(rows.contacts[m_rows[response.row].index], Vec3::UnitX(), [&](int32_t dof, const auto& entries) {
+      for (int32_t i = dof; i < dof + static_cast<int32_t>(entries.size()); ++i)
+        if (m_unitColumnOfDof[static_cast<size_t>(i)] < 0 &&
+            std::find(m_unitMissing.begin(), m_unitMissing.end(), i) == m_unitMissing.end())
+          m_unitMissing.push_back(i);
+    });
+  const auto missing = static_cast<Eigen::Index>(m_unitMissing.size());
+  if (m_unitCount + missing > kMaxUnitResponses) {
+    solveKktColumns(m_columns, true);
+    return;
+  }
+  if (missing > 0) {
+    m_releaseRhs.assign(static_cast<size_t>(size * missing), 0.0);
+    for (Eigen::Index i = 0; i < missing; ++i) m_releaseRhs[static_cast<size_t>(m_unitMissing[i] * missing + i)] = 1.0;
+    solveWithFactor(m_releaseRhs.data(), m_releaseRhs.data(), missing);
+    for (Eigen::Index i = 0; i < missing; ++i) {
+      for (Eigen::Index k = 0; k < size; ++k) m_unitResponses(k, m_unitCount) = m_releaseRhs[static_cast<size_t>(k * missing + i)];
+      m_unitColumnOfDof[static_cast<size_t>(m_unitMissing[i])] = static_cast<int32_t>(m_unitCount++);
+    }
+  }
+  // Each right-hand side in m_columns is a sum of units: F⁻¹ of it is the same sum of their columns.
+  m_unitWeights.clear();
+  for (const FrictionResponse& response : m_friction) {
+    const ContactRow& row = rows.contacts[m_rows[response.row].index];
+    for (int a = 0; a < 2; ++a)
+      visitImpulseOnDofs(row, a == 0 ? row.tangent1 : row.tangent2, [&](int32_t dof, const auto& entries) {
+        for (Eigen::Index i = 0; i < entries.size(); ++i)
+          m_unitWeights.push_back({m_unitColumnOfDof[static_cast<size_t>(dof + i)], response.column + a, entries[i]});
+      });
+  }
+  m_columns.setZero();
+  for (Eigen::Index k = 0; k < size; ++k) {
+    const double* unit = m_unitResponses.data() + k * kMaxUnitResponses;
+    double* out = m_columns.data() + k * m_columns.cols();
+    for (const UnitWeight& weight : m_unitWeights) out[weight.column] += weight.value * unit[weight.unit];
+  }
+  dropReleasedEquations(m_columns);
 }
 
 }  // namespace tandem
