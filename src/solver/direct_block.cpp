@@ -877,15 +877,16 @@ void DirectBlock::solveFriction(ConstraintRows& rows, SolverContext& ctx, Fricti
 
 void DirectBlock::solveFrictionColumns(const ConstraintRows& rows) {
   const Eigen::Index size = m_dofCount + scalarRowCount();
-  if (m_factorFresh || m_unitGeneration != m_factorGeneration) {  // units of an older F are of no use
-    m_unitGeneration = m_factorGeneration;
-    m_unitCount = 0;
-    m_unitColumnOfDof.assign(static_cast<size_t>(m_dofCount), -1);
-  }
+  if (m_columns.cols() == 0) return;
   // A fresh factorisation may not be kept: its friction columns are solved as they are.
-  if (m_factorFresh) {
+  if (m_factorFresh || m_unitResponses.rows() != size) {
     solveKktColumns(m_columns, true);
     return;
+  }
+  if (m_unitGeneration != m_factorGeneration || m_unitColumnOfDof.size() != static_cast<size_t>(m_dofCount)) {
+    m_unitGeneration = m_factorGeneration;  // units of an older F are of no use
+    m_unitCount = 0;
+    m_unitColumnOfDof.assign(static_cast<size_t>(m_dofCount), -1);
   }
   m_unitMissing.clear();
   for (const FrictionResponse& response : m_friction)
