@@ -447,17 +447,8 @@ void DirectBlock::release(const std::vector<int32_t>& released) {
     m_uncached.clear();
     for (int32_t row : released) m_uncached.push_back(m_dofCount + row);
   }
-  const auto width = static_cast<Eigen::Index>(m_uncached.size());
-  if (width > 0) {
-    m_releaseRhs.assign(static_cast<size_t>(size * width), 0.0);
-    for (Eigen::Index i = 0; i < width; ++i) m_releaseRhs[static_cast<size_t>(m_uncached[i] * width + i)] = 1.0;
-    solveWithFactor(m_releaseRhs.data(), m_releaseRhs.data(), width);
-    for (Eigen::Index i = 0; i < width; ++i) {
-      const auto column = static_cast<Eigen::Index>(m_cachedRows.size());
-      for (Eigen::Index k = 0; k < size; ++k) m_cachedColumns(k, column) = m_releaseRhs[static_cast<size_t>(k * width + i)];
-      m_cachedRows.push_back(m_uncached[i]);
-    }
-  }
+  solveUnitColumns(m_uncached, m_cachedColumns, static_cast<Eigen::Index>(m_cachedRows.size()));
+  m_cachedRows.insert(m_cachedRows.end(), m_uncached.begin(), m_uncached.end());
   for (int32_t row : released) {
     m_releasedColumns.col(static_cast<Eigen::Index>(m_releasedRows.size())) = m_cachedColumns.col(cachedColumn(m_dofCount + row));
     m_releasedRows.push_back(m_dofCount + row);
@@ -534,6 +525,20 @@ void DirectBlock::solveWithFactor(const double* in, double* out, Eigen::Index wi
     }
   }
   for (Eigen::Index i = 0; i < size; ++i) std::copy_n(data + i * width, width, out + Eigen::Index{inverse[i]} * width);
+}
+
+// F⁻¹ e_i for each KKT index i in `at`, solved together (each comes out as it would alone), into
+// the columns of `target` from `first` on.
+template <typename Target>
+void DirectBlock::solveUnitColumns(const std::vector<Eigen::Index>& at, Target& target, Eigen::Index first) {
+  const Eigen::Index size = m_dofCount + scalarRowCount();
+  const auto width = static_cast<Eigen::Index>(at.size());
+  if (width == 0) return;
+  m_releaseRhs.assign(static_cast<size_t>(size * width), 0.0);
+  for (Eigen::Index i = 0; i < width; ++i) m_releaseRhs[static_cast<size_t>(at[i] * width + i)] = 1.0;
+  solveWithFactor(m_releaseRhs.data(), m_releaseRhs.data(), width);
+  for (Eigen::Index i = 0; i < width; ++i)
+    for (Eigen::Index k = 0; k < size; ++k) target(k, first + i) = m_releaseRhs[static_cast<size_t>(k * width + i)];
 }
 
 // The same for many right-hand sides at once, in place; each column comes out as solveKkt's to
@@ -891,7 +896,7 @@ void DirectBlock::solveFrictionColumns(const ConstraintRows& rows) {
   m_unitMissing.clear();
   for (const FrictionResponse& response : m_friction)
     visitImpulseOnDofs(rows.contacts[m_rows[response.row].index], Vec3::UnitX(), [&](int32_t dof, const auto& entries) {
-      for (int32_t i = dof; i < dof + static_cast<int32_t>(entries.size()); ++i)
+      for (Eigen::Index i = dof; i < dof + entries.size(); ++i)
         if (m_unitColumnOfDof[static_cast<size_t>(i)] < 0 &&
             std::find(m_unitMissing.begin(), m_unitMissing.end(), i) == m_unitMissing.end())
           m_unitMissing.push_back(i);
@@ -901,15 +906,8 @@ void DirectBlock::solveFrictionColumns(const ConstraintRows& rows) {
     solveKktColumns(m_columns, true);
     return;
   }
-  if (missing > 0) {
-    m_releaseRhs.assign(static_cast<size_t>(size * missing), 0.0);
-    for (Eigen::Index i = 0; i < missing; ++i) m_releaseRhs[static_cast<size_t>(m_unitMissing[i] * missing + i)] = 1.0;
-    solveWithFactor(m_releaseRhs.data(), m_releaseRhs.data(), missing);
-    for (Eigen::Index i = 0; i < missing; ++i) {
-      for (Eigen::Index k = 0; k < size; ++k) m_unitResponses(k, m_unitCount) = m_releaseRhs[static_cast<size_t>(k * missing + i)];
-      m_unitColumnOfDof[static_cast<size_t>(m_unitMissing[i])] = static_cast<int32_t>(m_unitCount++);
-    }
-  }
+  solveUnitColumns(m_unitMissing, m_unitResponses, m_unitCount);
+  for (Eigen::Index dof : m_unitMissing) m_unitColumnOfDof[static_cast<size_t>(dof)] = static_cast<int32_t>(m_unitCount++);
   // Each right-hand side in m_columns is a sum of units: F⁻¹ of it is the same sum of their columns.
   m_unitWeights.clear();
   for (const FrictionResponse& response : m_friction) {

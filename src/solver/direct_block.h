@@ -242,7 +242,7 @@ class DirectBlock {
   Eigen::MatrixXd m_releasedColumns;  // A⁻¹ e_r for each of them: its first m_releasedRows.size() columns
   ReleasedMatrix m_releasedCouplingMatrix;                 // those columns' released rows
   Eigen::PartialPivLU<ReleasedMatrix> m_releasedCoupling;  // and its factorisation
-  std::vector<double> m_releaseRhs;  // scratch of release() and solveFrictionColumns(): unit right-hand sides, row by row
+  std::vector<double> m_releaseRhs;  // scratch of solveUnitColumns(): unit right-hand sides, row by row
   // A⁻¹ e_r of rows let go with this factorisation, kept while it is: a jelly at rest under a bar
   // keeps its factorisation for steps and lets the same contacts go in each (the first
   // m_cachedRows.size() columns, at most kLowRankReleases; cleared by a new factorisation).
@@ -279,7 +279,7 @@ class DirectBlock {
     double value;
   };
   std::vector<UnitWeight> m_unitWeights;   // how much of which unit each friction column is
-  std::vector<int32_t> m_unitMissing;      // scratch: degrees of freedom still without a unit column
+  std::vector<Eigen::Index> m_unitMissing;  // scratch: degrees of freedom still without a unit column
   // The friction columns' right-hand sides in m_columns solved: from the unit responses when F
   // is kept and they fit, else directly.
   void solveFrictionColumns(const ConstraintRows& rows);
@@ -314,6 +314,9 @@ class DirectBlock {
   // The same for many right-hand sides at once, in place: the columns of `x` in, A⁻¹ of them out
   // (`withReleased`: the released rows' equations dropped, else the factorised system's).
   void solveKktColumns(ColumnBlock& x, bool withReleased) const;
+  // F⁻¹ e_i for each KKT index i in `at`, into the columns of `target` from `first` on.
+  template <typename Target>
+  void solveUnitColumns(const std::vector<Eigen::Index>& at, Target& target, Eigen::Index first);
   void dropReleasedEquations(ColumnBlock& x) const;  // solveKktColumns' second half
   double rowVelocity(const ConstraintRows& rows, const BlockRowRef& ref, const SolverContext& ctx) const;
 };
