@@ -251,6 +251,7 @@ Status World::removeRigidBody(RigidBodyId body) {
       if (supports.body[i] == b) {
         supports.normal[i].setZero();
         supports.body[i] = -1;
+        supports.moves[i] = 0;
       }
     for (size_t i = 0; i < supports.holdBody.size(); ++i)
       if (supports.holdBody[i] == b) {

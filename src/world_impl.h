@@ -32,6 +32,11 @@ inline bool isPositive(double value) { return value > 0 && !std::isnan(value); }
 // Passes over the contacts no direct block holds, after the blocks, in each iteration.
 inline constexpr int kFreeContactPasses = 4;
 
+// What a rigid body's holds on implicit bodies gave it this step (models/supports.h).
+struct MovingSupportReaction {
+  Vec3 impulse, angularImpulse;  // the latter about its centre of mass
+};
+
 struct DeformableRecord {
   std::string name;
   int32_t firstNode = 0;
@@ -149,6 +154,13 @@ struct World::Impl final : bullet::SolverHooks {
   } strainScratch;
   PositionBasedScratch paradigmScratch;  // of applyParadigm
   ImplicitSolveScratch implicitScratch;  // of solveImplicitVelocities
+  // Scratch of solveImplicitBodies: the groups (union-find over deformables, and per rigid body
+  // the first deformable resting on it), one group's bodies, their supports and moving supports.
+  std::vector<int32_t> implicitGroup, implicitGroupOfRigid;
+  std::vector<ImplicitBody*> implicitBodies;
+  std::vector<Supports*> implicitSupports;
+  std::vector<MovingSupport> movingSupports;
+  std::vector<MovingSupportReaction> movingSupportReactions;  // per rigid body, this step's
   std::vector<Vec3> sweepStartVelocity;  // the nodes' velocities before the warm start
 
   StepReport report;
@@ -190,6 +202,10 @@ struct World::Impl final : bullet::SolverHooks {
   // ---- Stage 1: models -----------------------------------------------------------------
   // Unconstrained node velocities: v* = v + h m⁻¹ (f_internal + f_external), gravity included.
   void computeUnconstrainedVelocities(double h);
+  // The implicit bodies' solves, grouped by the dynamic bodies resting on them (models/supports.h),
+  // and those bodies' reactions, given out per substep.
+  void solveImplicitBodies(double h);
+  void giveMovingSupportsTheirReactions(double fraction);
 
   // Position-based paradigms turn goals into velocities (mass-spring and FEM bodies are done:
   // their forces are in v* already), after holding their supported nodes (models/supports.h).

@@ -116,12 +116,25 @@ void World::Impl::addHoldImpulsesToSupports() {
 void World::Impl::rememberSupports() {
   for (DeformableRecord& body : deformables) body.supports.reset(body.firstNode, body.nodeCount);
   const SolverContext ctx = context();
+  // A dynamic body is a moving support of the swept implicit bodies that pressed on it last step.
+  std::vector<char>& inBlock = supportAssigned;  // scratch: per node, whether a direct block holds it
+  inBlock.assign(nodes.size(), 0);
+  for (const DirectBlock& block : directBlocks)
+    for (const DirectBlock::NodeRange& range : block.ranges())
+      std::fill_n(inBlock.begin() + range.first, range.count, 1);
   for (const ContactRow& row : rows.contacts) {
-    if (!row.isNodeOnRigid() || rigid[row.body].inverseMass != 0.0) continue;
+    if (!row.isNodeOnRigid()) continue;
     const double surfaceSpeed = row.normal.dot(rigid[row.body].velocityAt(row.offset));
     const double gapAtEnd = row.gap + substepLength * row.normal.dot(contactRelativeVelocity(row, ctx));
     DeformableRecord& body = deformables[deformableIndexOfNode(row.node[0])];
-    body.supports.add(row.node[0], row.body, row.normal, gapAtEnd, surfaceSpeed);
+    if (rigid[row.body].inverseMass == 0.0) {
+      body.supports.add(row.node[0], row.body, row.normal, gapAtEnd, surfaceSpeed);
+      continue;
+    }
+    if (!body.implicitStep || inBlock[row.node[0]] || rigid[row.body].isJointed() ||
+        row.lambdaNormal + row.supportImpulse <= 0.0)
+      continue;
+    body.supports.addMoving(row.node[0], row.body, row.normal, gapAtEnd, surfaceSpeed, row.offset);
   }
 }
 

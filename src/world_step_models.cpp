@@ -2,22 +2,92 @@
 // damping. (src/world.cpp runs the stages in order; src/world_impl.h holds the state.)
 #include "world_impl.h"
 
+#include <numeric>
+
 namespace tandem {
 
 void World::Impl::computeUnconstrainedVelocities(double h) {
   for (Vec3& f : nodes.force) f.setZero();
   addSpringForces(springs, nodes);
+  for (DeformableRecord& body : deformables) body.supports.clearHolds();
+  solveImplicitBodies(h);
   for (DeformableRecord& body : deformables) {
-    body.supports.clearHolds();
-    if (body.implicitStep) {
-      solveImplicitVelocities(body.implicit, body.supports, nodes, settings.gravity, h, implicitScratch);  // gravity included
-    } else {
+    if (!body.implicitStep)
       for (int32_t i = body.firstNode; i < body.firstNode + body.nodeCount; ++i)
         if (nodes.inverseMass[i] != 0.0)
           nodes.velocity[i] += h * (settings.gravity + nodes.inverseMass[i] * nodes.force[i]);
-    }
     dampInternalMotion(body, h);
     applyParadigm(body, h);
+  }
+}
+
+// The implicit bodies, each solved alone or with those it shares a moving support with (a bar on
+// two jellies), that support moving with them (models/supports.h).
+void World::Impl::solveImplicitBodies(double h) {
+  const size_t count = deformables.size();
+  // Group the bodies by their moving supports: a union over the rigid bodies they rest on.
+  std::vector<int32_t>& group = implicitGroup;
+  group.resize(count);
+  std::iota(group.begin(), group.end(), 0);
+  auto root = [&](int32_t d) {
+    while (group[d] != d) d = group[d] = group[group[d]];
+    return d;
+  };
+  std::vector<int32_t>& firstOnBody = implicitGroupOfRigid;
+  firstOnBody.assign(rigid.size(), -1);
+  for (size_t d = 0; d < count; ++d) {
+    const DeformableRecord& body = deformables[d];
+    if (!body.implicitStep) continue;
+    for (size_t i = 0; i < body.supports.moves.size(); ++i) {
+      const int32_t support = body.supports.body[i];
+      if (!body.supports.moves[i] || support < 0 || static_cast<size_t>(support) >= rigid.size()) continue;
+      int32_t& other = firstOnBody[support];
+      if (other < 0)
+        other = static_cast<int32_t>(d);
+      else
+        group[root(static_cast<int32_t>(d))] = root(other);
+    }
+  }
+  movingSupportReactions.assign(rigid.size(), {Vec3::Zero(), Vec3::Zero()});
+  for (size_t d = 0; d < count; ++d) {
+    if (!deformables[d].implicitStep || root(static_cast<int32_t>(d)) != static_cast<int32_t>(d)) continue;
+    implicitBodies.clear();
+    implicitSupports.clear();
+    movingSupports.clear();
+    for (size_t e = d; e < count; ++e) {
+      if (!deformables[e].implicitStep || root(static_cast<int32_t>(e)) != static_cast<int32_t>(d)) continue;
+      implicitBodies.push_back(&deformables[e].implicit);
+      implicitSupports.push_back(&deformables[e].supports);
+    }
+    for (size_t b = 0; b < rigid.size(); ++b) {
+      if (firstOnBody[b] < 0 || root(firstOnBody[b]) != static_cast<int32_t>(d)) continue;
+      const auto index = static_cast<int>(b);
+      // Asleep or made still since last step: its nodes are not held this step.
+      if (!bullet.isDynamic(index) || !bullet.isAwake(index) || rigid[b].inverseMass == 0.0 ||
+          rigid[b].inverseInertia.determinant() <= 0.0)
+        continue;
+      movingSupports.push_back({index, bullet.mass(index), rigid[b].inverseInertia.inverse()});
+    }
+    solveImplicitVelocities(implicitBodies, implicitSupports, movingSupports, nodes, settings.gravity, h,
+                            implicitScratch);  // gravity included
+    // What the moving supports gave the held nodes, they take back (given out per substep).
+    for (const Supports* supports : implicitSupports)
+      for (size_t i = 0; i < supports->holdBody.size(); ++i)
+        if (supports->holdBody[i] >= 0 && supports->moves[i]) {
+          MovingSupportReaction& reaction = movingSupportReactions[supports->holdBody[i]];
+          reaction.impulse -= supports->holdImpulse[i];
+          reaction.angularImpulse -= supports->offset[i].cross(supports->holdImpulse[i]);
+        }
+  }
+  if (settings.solver.substeps == 1) giveMovingSupportsTheirReactions(1.0);
+}
+
+void World::Impl::giveMovingSupportsTheirReactions(double fraction) {
+  for (size_t b = 0; b < movingSupportReactions.size(); ++b) {
+    const MovingSupportReaction& reaction = movingSupportReactions[b];
+    if (reaction.impulse.isZero() && reaction.angularImpulse.isZero()) continue;
+    bullet.applyImpulse(static_cast<int>(b), fraction * reaction.impulse, Vec3::Zero());
+    bullet.applyAngularImpulse(static_cast<int>(b), fraction * reaction.angularImpulse);
   }
 }
 

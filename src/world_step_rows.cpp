@@ -18,9 +18,15 @@ void World::Impl::prepareRows(double h) {
   }
   std::vector<NodePairStiffness>& elastic = implicitStiffness;  // h D + h² K_e of the implicit bodies
   elastic.clear();
+  auto inBlock = [&](const DeformableRecord& body) {
+    for (const DirectBlock& block : directBlocks)
+      for (const DirectBlock::NodeRange& range : block.ranges())
+        if (range.first == body.firstNode && range.tied) return true;
+    return false;
+  };
   if (anyRows)
     for (const DeformableRecord& body : deformables)
-      if (body.implicitStep) addImplicitStiffness(body.implicit, nodes, h, elastic);
+      if (body.implicitStep && inBlock(body)) addImplicitStiffness(body.implicit, nodes, h, elastic);
   for (DirectBlock& block : directBlocks) block.prepare(rows, nodes, rigid, h, elastic);
   report.rowCounts = rows.countRows();
 }
@@ -82,15 +88,17 @@ void World::Impl::buildDirectBlocks() {
     DirectBlock block(rangesOf(members, {}));
     block.collectRows(rows);
     const int32_t rowCount = block.scalarRowCount();
-    const Role groupRole = elastic || (rowCount > 0 && (forced || chains || rowCount <= kAutoDirectRowLimit))
+    // An elastic body's model carries what rests on it (models/supports.h), so without rows of
+    // its own it is swept, not free nodes for another block to take.
+    const Role groupRole = (forced && elastic) || (rowCount > 0 && (forced || chains || rowCount <= kAutoDirectRowLimit))
                                ? Role::Direct
-                               : (rowCount == 0 ? Role::Free : Role::Swept);
+                               : (rowCount == 0 && !elastic ? Role::Free : Role::Swept);
     for (int32_t member : members) role[member] = groupRole;
   }
   // Direct groups touching one dynamic body at the step's start are one block, with the bodies
   // of free nodes touching it: solved apart, in turns, each held the body up alone and they never
-  // agreed within K iterations (a bar resting on four jellies rocked and slid on them at
-  // 0.4 mm/s, docs/solver.md).
+  // agreed within K iterations (a bar resting on four jellies, when they were blocks, rocked and
+  // slid on them at 0.4 mm/s, docs/solver.md).
   for (size_t first = 0, end; first < bodyContacts.size(); first = end) {
     int32_t direct = -1;
     for (end = first; end < bodyContacts.size() && bodyContacts[end].first == bodyContacts[first].first; ++end)

@@ -33,6 +33,7 @@ void World::Impl::spreadModelVelocities(int substeps) {
 
 void World::Impl::beginSubstep(int substep, int substeps) {
   if (substeps == 1) return;
+  giveMovingSupportsTheirReactions(1.0 / substeps);
   for (size_t i = 0; i < nodes.size(); ++i) nodes.velocity[i] += modelVelocityChange[i];
   const double from = static_cast<double>(substep) / substeps, to = static_cast<double>(substep + 1) / substeps;
   for (size_t r = 0; r < rows.fixedPoints.size(); ++r) {

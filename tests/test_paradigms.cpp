@@ -298,10 +298,10 @@ TEST(Paradigms, FemJellySquashedByAPlateRecovers) {
 }
 
 // A 2 kg plate on a jelly of 0.5 kg (ν = 0, so the stress is uniform and the compression
-// exact): held by the whole jelly through the direct block's implicit response, the jelly
-// shortens by F H / (E A) under the plate plus ρ g H² / 2E under its own weight, 3.1 mm here.
-// (Before FEM joined the blocks, the plate's contacts saw only the lumped masses of the nodes
-// under it and the plate went through the jelly to the ground.)
+// exact): held by the whole jelly, the plate moving in the jelly's implicit solve
+// (models/supports.h), the jelly shortens by F H / (E A) under the plate plus ρ g H² / 2E under
+// its own weight, 3.1 mm here. (With the plate's contacts seeing only the lumped masses of the
+// nodes under it, the plate sank 15 mm into the jelly, or went through it to the ground.)
 TEST(Paradigms, FemJellyHoldsAHeavyPlateWithTheRightCompression) {
   const double youngs = 50e3, radius = 0.1, height = 0.2, jellyMass = 0.5, plateMass = 2.0;
   World world;

@@ -33,37 +33,66 @@ ImplicitBody makeImplicitBody(int32_t firstNode, int32_t nodeCount, FemElements 
   return body;
 }
 
-void solveImplicitVelocities(ImplicitBody& body, Supports& supports, NodeArrays& nodes, const Vec3& gravity,
-                             double h, ImplicitSolveScratch& work) {
-  const int32_t count = body.nodeCount, first = body.firstNode;
-  auto free = [&](int32_t i) { return nodes.inverseMass[first + i] > 0; };
-  const std::span<const Vec3> position(nodes.position.data() + first, count);
+void solveImplicitVelocities(std::span<ImplicitBody* const> bodies, std::span<Supports* const> supports,
+                             std::span<MovingSupport> moving, NodeArrays& nodes, const Vec3& gravity, double h,
+                             ImplicitSolveScratch& work) {
+  // The bodies' nodes one after another: node i of body k at sliceStart[k] + i.
+  std::vector<int32_t>& sliceStart = work.sliceStart;
+  sliceStart.clear();
+  int32_t count = 0;
+  for (const ImplicitBody* body : bodies) {
+    sliceStart.push_back(count);
+    count += body->nodeCount;
+  }
+  std::vector<double>& inverseMass = work.heldChange;  // per node, until the holds are made
+  inverseMass.resize(count);
   std::vector<Vec3>& velocity = work.velocity;
-  velocity.assign(nodes.velocity.begin() + first, nodes.velocity.begin() + first + count);
-  for (int32_t i = 0; i < count; ++i)
-    if (!free(i)) velocity[i].setZero();
+  velocity.resize(count);
+  for (size_t k = 0; k < bodies.size(); ++k)
+    for (int32_t i = 0; i < bodies[k]->nodeCount; ++i) {
+      const int32_t node = bodies[k]->firstNode + i;
+      inverseMass[sliceStart[k] + i] = nodes.inverseMass[node];
+      velocity[sliceStart[k] + i] = nodes.inverseMass[node] > 0 ? nodes.velocity[node] : Vec3::Zero();
+    }
+  std::vector<double>& mass = work.mass;  // per node, 0 for a pinned one
+  mass.resize(count);
+  for (int32_t i = 0; i < count; ++i) mass[i] = inverseMass[i] > 0 ? 1.0 / inverseMass[i] : 0.0;
 
   // Forces at (x, v): the elements' (with their rotations, which K keeps) and the springs'.
-  body.rotations.resize(body.fem.tetrahedra.size());
-  const std::vector<Mat3>& rotations = body.rotations;
   std::vector<Vec3>& force = work.force;
   force.assign(count, Vec3::Zero());
-  addFemForces(body.fem, position, force, first, body.rotations);
-  std::vector<EdgeSpring>& springs = work.springs;  // local indices
-  springs.assign(body.springs.begin(), body.springs.end());
+  std::vector<EdgeSpring>& springs = work.springs;  // in the solve's indices
   std::vector<SpringBlocks>& blocks = work.springBlocks;
+  springs.clear();
   blocks.clear();
-  for (EdgeSpring& spring : springs) {
-    spring.nodeA -= first;
-    spring.nodeB -= first;
-    blocks.push_back(springBlocks(spring, position));
+  for (size_t k = 0; k < bodies.size(); ++k) {
+    ImplicitBody& body = *bodies[k];
+    const std::span<const Vec3> position(nodes.position.data() + body.firstNode, body.nodeCount);
+    body.rotations.resize(body.fem.tetrahedra.size());
+    addFemForces(body.fem, position, std::span<Vec3>(force.data() + sliceStart[k], body.nodeCount), body.firstNode,
+                 body.rotations);
+    for (EdgeSpring spring : body.springs) {
+      spring.nodeA += sliceStart[k] - body.firstNode;
+      spring.nodeB += sliceStart[k] - body.firstNode;
+      springs.push_back(spring);
+    }
   }
-  addSpringForces(springs, position, velocity, force);
+  std::vector<Vec3>& positions = work.full;  // the springs read positions in the solve's indices
+  positions.resize(count);
+  for (size_t k = 0; k < bodies.size(); ++k)
+    std::copy_n(nodes.position.begin() + bodies[k]->firstNode, bodies[k]->nodeCount, positions.begin() + sliceStart[k]);
+  for (const EdgeSpring& spring : springs) blocks.push_back(springBlocks(spring, positions));
+  addSpringForces(springs, positions, velocity, force);
 
   // −K y (stiffness only) or −(h D + h² K) y (`damped`), matrix-free.
   auto negativeStiffness = [&](const std::vector<Vec3>& y, std::vector<Vec3>& out, bool damped) {
     out.assign(count, Vec3::Zero());
-    addFemStiffnessProduct(body.fem, rotations, y, out, first);
+    for (size_t k = 0; k < bodies.size(); ++k) {
+      const ImplicitBody& body = *bodies[k];
+      if (body.fem.tetrahedra.empty()) continue;
+      addFemStiffnessProduct(body.fem, body.rotations, std::span<const Vec3>(y.data() + sliceStart[k], body.nodeCount),
+                             std::span<Vec3>(out.data() + sliceStart[k], body.nodeCount), body.firstNode);
+    }
     const double scale = damped ? -h * h : -1.0;
     for (Vec3& o : out) o *= scale;
     for (size_t s = 0; s < springs.size(); ++s) {
@@ -78,102 +107,203 @@ void solveImplicitVelocities(ImplicitBody& body, Supports& supports, NodeArrays&
   auto apply = [&](const std::vector<Vec3>& y, std::vector<Vec3>& out) {
     negativeStiffness(y, scratch, true);
     out.resize(count);
-    for (int32_t i = 0; i < count; ++i)
-      out[i] = free(i) ? Vec3(y[i] / nodes.inverseMass[first + i] + scratch[i]) : Vec3::Zero();
+    for (int32_t i = 0; i < count; ++i) out[i] = mass[i] > 0 ? Vec3(mass[i] * y[i] + scratch[i]) : Vec3::Zero();
   };
-  // Jacobi preconditioner: P = diag(m + h² tr(−K_ii)/3 + tr(h² K_s + h D_s)/3) per node, elements'
-  // and springs' blocks.
-  if (body.stiffnessDiagonal.size() != static_cast<size_t>(count)) {
-    body.stiffnessDiagonal.assign(count, 0.0);
-    std::vector<NodePairStiffness> pairs;
-    addFemStiffnessBlocks(body.fem, rotations, 1.0, pairs);
-    for (const NodePairStiffness& pair : pairs)
-      if (pair.nodeA == pair.nodeB) body.stiffnessDiagonal[pair.nodeA - first] += pair.k.trace() / 3.0;
-  }
-  std::vector<double>& preconditioner = work.preconditioner;
-  preconditioner.assign(count, 0.0);
-  for (int32_t i = 0; i < count; ++i)
-    if (free(i)) preconditioner[i] = 1.0 / nodes.inverseMass[first + i] + h * h * body.stiffnessDiagonal[i];
-  for (size_t s = 0; s < springs.size(); ++s) {
-    const double k = (h * h * blocks[s].stiffness + h * blocks[s].damping).trace() / 3.0;
-    for (int32_t node : {springs[s].nodeA, springs[s].nodeB})
-      if (free(node)) preconditioner[node] += k;
-  }
-  for (double& d : preconditioner) d = d > 0.0 ? 1.0 / d : 0.0;
 
   // b = h (f + f_ext + m g) + h² K v
   std::vector<Vec3>& b = work.b;
   std::vector<Vec3>& kv = work.stiffnessTimesVelocity;
   b.resize(count);
   negativeStiffness(velocity, kv, false);
-  for (int32_t i = 0; i < count; ++i)
-    b[i] = free(i) ? Vec3(h * (force[i] + nodes.force[first + i] + gravity / nodes.inverseMass[first + i]) - h * h * kv[i])
-                   : Vec3::Zero();
+  for (size_t k = 0; k < bodies.size(); ++k)
+    for (int32_t i = 0; i < bodies[k]->nodeCount; ++i) {
+      const int32_t g = sliceStart[k] + i;
+      b[g] = mass[g] > 0 ? Vec3(h * (force[g] + nodes.force[bodies[k]->firstNode + i] + mass[g] * gravity) - h * h * kv[g])
+                         : Vec3::Zero();
+    }
 
-  // Held nodes, and the normal Δv each must take (see the header).
+  // Jacobi preconditioner: P = diag(m + h² tr(−K_ii)/3 + tr(h² K_s + h D_s)/3) per node, elements'
+  // and springs' blocks.
+  for (ImplicitBody* body : bodies)
+    if (body->stiffnessDiagonal.size() != static_cast<size_t>(body->nodeCount)) {
+      body->stiffnessDiagonal.assign(body->nodeCount, 0.0);
+      std::vector<NodePairStiffness> pairs;
+      addFemStiffnessBlocks(body->fem, body->rotations, 1.0, pairs);
+      for (const NodePairStiffness& pair : pairs)
+        if (pair.nodeA == pair.nodeB) body->stiffnessDiagonal[pair.nodeA - body->firstNode] += pair.k.trace() / 3.0;
+    }
+  std::vector<double>& preconditioner = work.preconditioner;
+  preconditioner.assign(count, 0.0);
+  for (size_t k = 0; k < bodies.size(); ++k)
+    for (int32_t i = 0; i < bodies[k]->nodeCount; ++i) {
+      const int32_t g = sliceStart[k] + i;
+      if (mass[g] > 0) preconditioner[g] = mass[g] + h * h * bodies[k]->stiffnessDiagonal[i];
+    }
+  for (size_t s = 0; s < springs.size(); ++s) {
+    const double k = (h * h * blocks[s].stiffness + h * blocks[s].damping).trace() / 3.0;
+    for (int32_t node : {springs[s].nodeA, springs[s].nodeB})
+      if (mass[node] > 0) preconditioner[node] += k;
+  }
+
+  // Held nodes, and the normal Δv each must take (see the header); a node on a moving support
+  // takes its support's normal motion on top, which the solve finds with the nodes'.
   std::vector<Vec3>& held = work.held;
   std::vector<double>& heldChange = work.heldChange;
+  std::vector<Vec3>& offset = work.offset;
+  offset.assign(count, Vec3::Zero());
+  std::vector<int32_t>& movingOf = work.movingOf;
   held.assign(count, Vec3::Zero());
   heldChange.assign(count, 0.0);
-  for (int32_t i = 0; i < count; ++i) {
-    const Vec3& n = supports.normal[i];
-    if (n.isZero() || !free(i)) continue;
-    const double target = supports.targetSpeed(i, h);
-    const double freeSpeed = n.dot(nodes.velocity[first + i] + h * gravity);
-    if (freeSpeed >= target) continue;
-    held[i] = n;
-    heldChange[i] = target - n.dot(nodes.velocity[first + i]);
+  movingOf.assign(count, -1);
+  for (size_t k = 0; k < bodies.size(); ++k) {
+    const Supports& support = *supports[k];
+    for (int32_t i = 0; i < bodies[k]->nodeCount; ++i) {
+      const int32_t g = sliceStart[k] + i;
+      const Vec3& n = support.normal[i];
+      if (n.isZero() || mass[g] == 0.0) continue;
+      const double target = support.targetSpeed(i, h);
+      if (support.moves[i]) {
+        for (size_t m = 0; m < moving.size(); ++m)
+          if (moving[m].body == support.body[i]) movingOf[g] = static_cast<int32_t>(m);
+        if (movingOf[g] < 0) continue;
+        offset[g] = support.offset[i];
+      } else if (n.dot(velocity[g] + h * gravity) >= target) {
+        continue;
+      }
+      held[g] = n;
+      heldChange[g] = target - n.dot(velocity[g]);
+    }
   }
+
   // Filtered conjugate gradients (Baraff and Witkin 1998), Jacobi-preconditioned, from last step's
-  // Δv: S takes out the held normal components.
+  // Δv: S takes out the held normal components; a moving support's motion (V, Ω) comes back in
+  // through them, n (n · (V + Ω × r)) at each of its held nodes, and its share of mass and
+  // inertia is its own part of the system, with its gravity.
+  const auto supportCount = static_cast<int32_t>(moving.size());
   auto filter = [&](std::vector<Vec3>& y) {
     for (int32_t i = 0; i < count; ++i) y[i] -= held[i].dot(y[i]) * held[i];
   };
-  std::vector<Vec3>& x = body.previousStep;
+  auto movesWith = [&](int32_t i) { return held[i].isZero() ? -1 : movingOf[i]; };
+  std::vector<Vec3>& full = work.full;
+  auto expand = [&](const std::vector<Vec3>& y, const std::vector<Vec3>& Y) {  // Y: V then Ω per support
+    full = y;
+    for (int32_t i = 0; i < count; ++i)
+      if (const int32_t m = movesWith(i); m >= 0)
+        full[i] += held[i].dot(Y[2 * m] + Y[2 * m + 1].cross(offset[i])) * held[i];
+  };
+  auto gather = [&](const std::vector<Vec3>& g, std::vector<Vec3>& out) {
+    out.assign(2 * supportCount, Vec3::Zero());
+    for (int32_t i = 0; i < count; ++i)
+      if (const int32_t m = movesWith(i); m >= 0) {
+        const Vec3 along = held[i].dot(g[i]) * held[i];
+        out[2 * m] += along;
+        out[2 * m + 1] += offset[i].cross(along);
+      }
+  };
+  auto addSupportInertia = [&](const std::vector<Vec3>& Y, double scale, std::vector<Vec3>& out) {
+    for (int32_t m = 0; m < supportCount; ++m) {
+      out[2 * m] += scale * moving[m].mass * Y[2 * m];
+      out[2 * m + 1] += scale * (moving[m].inertia * Y[2 * m + 1]);
+    }
+  };
+  std::vector<Vec3>& x = work.x;
+  x.resize(count);
+  for (size_t k = 0; k < bodies.size(); ++k)
+    std::copy_n(bodies[k]->previousStep.begin(), bodies[k]->nodeCount, x.begin() + sliceStart[k]);
   for (int32_t i = 0; i < count; ++i)
-    if (!free(i)) x[i].setZero();
+    if (mass[i] == 0.0) x[i].setZero();
+  std::vector<Vec3>& X = work.supportChange;
+  X.assign(2 * supportCount, Vec3::Zero());
   std::vector<Vec3>& r = work.r;
   std::vector<Vec3>& z = work.z;
   std::vector<Vec3>& p = work.p;
   std::vector<Vec3>& ap = work.ap;
+  std::vector<Vec3>& R = work.supportResidual;
+  std::vector<Vec3>& Z = work.supportPreconditioned;
+  std::vector<Vec3>& P = work.supportDirection;
+  std::vector<Vec3>& AP = work.supportProduct;
+  std::vector<Mat3>& supportPreconditioner = work.supportPreconditioner;
   r.resize(count);
   z.resize(count);
+  Z.resize(2 * supportCount);
   double bNorm = 0.0;
   for (const Vec3& bi : b) bNorm += bi.squaredNorm();
+  for (const MovingSupport& support : moving) bNorm += (h * support.mass * gravity).squaredNorm();
+  auto applyReduced = [&](const std::vector<Vec3>& y, const std::vector<Vec3>& Y, std::vector<Vec3>& out,
+                          std::vector<Vec3>& Out) {
+    expand(y, Y);
+    apply(full, out);
+    gather(out, Out);
+    addSupportInertia(Y, 1.0, Out);
+    filter(out);
+  };
   int iteration = 0;
   for (int round = 0; round < 3; ++round) {
-    for (int32_t i = 0; i < count; ++i) x[i] += (heldChange[i] - held[i].dot(x[i])) * held[i];
+    for (int32_t i = 0; i < count; ++i) {
+      const int32_t m = movesWith(i);
+      const double normal = heldChange[i] + (m >= 0 ? held[i].dot(X[2 * m] + X[2 * m + 1].cross(offset[i])) : 0.0);
+      x[i] += (normal - held[i].dot(x[i])) * held[i];
+    }
+    // Each support's block of the preconditioner: its inertia and its held nodes' diagonals.
+    supportPreconditioner.assign(2 * supportCount, Mat3::Zero());
+    for (int32_t m = 0; m < supportCount; ++m) {
+      supportPreconditioner[2 * m] = moving[m].mass * Mat3::Identity();
+      supportPreconditioner[2 * m + 1] = moving[m].inertia;
+    }
+    for (int32_t i = 0; i < count; ++i)
+      if (const int32_t m = movesWith(i); m >= 0) {
+        const Vec3 turn = offset[i].cross(held[i]);
+        supportPreconditioner[2 * m] += preconditioner[i] * held[i] * held[i].transpose();
+        supportPreconditioner[2 * m + 1] += preconditioner[i] * turn * turn.transpose();
+      }
+    for (Mat3& block : supportPreconditioner) block = block.inverse().eval();
     apply(x, ap);
     for (int32_t i = 0; i < count; ++i) r[i] = b[i] - ap[i];
+    gather(r, R);
+    for (int32_t m = 0; m < supportCount; ++m) R[2 * m] += h * moving[m].mass * gravity;
+    addSupportInertia(X, -1.0, R);
     filter(r);
     auto precondition = [&]() {  // z = S P⁻¹ r, and returns r·z
       double rz = 0.0;
-      for (int32_t i = 0; i < count; ++i) z[i] = preconditioner[i] * r[i];
+      for (int32_t i = 0; i < count; ++i) z[i] = mass[i] > 0 ? Vec3(r[i] / preconditioner[i]) : Vec3::Zero();
       filter(z);
       for (int32_t i = 0; i < count; ++i) rz += r[i].dot(z[i]);
+      for (int32_t j = 0; j < 2 * supportCount; ++j) {
+        Z[j] = supportPreconditioner[j] * R[j];
+        rz += R[j].dot(Z[j]);
+      }
       return rz;
     };
     double rr = 0.0;
     for (const Vec3& ri : r) rr += ri.squaredNorm();
+    for (const Vec3& Ri : R) rr += Ri.squaredNorm();
     double rz = precondition();
     p = z;
+    P = Z;
     for (; iteration < kMaxIterations && rr > kRelativeTolerance * kRelativeTolerance * bNorm; ++iteration) {
-      apply(p, ap);
-      filter(ap);
+      applyReduced(p, P, ap, AP);
       double pap = 0.0;
       for (int32_t i = 0; i < count; ++i) pap += p[i].dot(ap[i]);
+      for (int32_t j = 0; j < 2 * supportCount; ++j) pap += P[j].dot(AP[j]);
       if (pap <= 0) break;  // not positive definite: should not happen, stop rather than diverge
       const double alpha = rz / pap;
       rr = 0.0;
+      expand(p, P);
       for (int32_t i = 0; i < count; ++i) {
-        x[i] += alpha * p[i];
+        x[i] += alpha * full[i];
         r[i] -= alpha * ap[i];
         rr += r[i].squaredNorm();
+      }
+      for (int32_t j = 0; j < 2 * supportCount; ++j) {
+        X[j] += alpha * P[j];
+        R[j] -= alpha * AP[j];
+        rr += R[j].squaredNorm();
       }
       const double next = precondition();
       const double beta = next / rz;
       rz = next;
       for (int32_t i = 0; i < count; ++i) p[i] = z[i] + beta * p[i];
+      for (int32_t j = 0; j < 2 * supportCount; ++j) P[j] = Z[j] + beta * P[j];
     }
     // Let go of holds that pull (c = A Δv − b against the normal), and solve again if any did.
     apply(x, ap);
@@ -186,12 +316,18 @@ void solveImplicitVelocities(ImplicitBody& body, Supports& supports, NodeArrays&
     }
     if (!released) break;
   }
-  body.lastIterations = iteration;
-  supports.clearHolds();  // ap is A x: x has not moved since the last release check
-  for (int32_t i = 0; i < count; ++i)
-    if (!held[i].isZero()) supports.recordHold(i, held[i].dot(ap[i] - b[i]));
-  for (int32_t i = 0; i < count; ++i)
-    if (free(i)) nodes.velocity[first + i] += x[i];
+  for (size_t k = 0; k < bodies.size(); ++k) {
+    ImplicitBody& body = *bodies[k];
+    Supports& support = *supports[k];
+    body.lastIterations = iteration;
+    support.clearHolds();  // ap is A x: x has not moved since the last release check
+    for (int32_t i = 0; i < body.nodeCount; ++i) {
+      const int32_t g = sliceStart[k] + i;
+      if (!held[g].isZero()) support.recordHold(i, held[g].dot(ap[g] - b[g]));
+      if (mass[g] > 0) nodes.velocity[body.firstNode + i] += x[g];
+    }
+    std::copy_n(x.begin() + sliceStart[k], body.nodeCount, body.previousStep.begin());
+  }
 }
 
 void addImplicitStiffness(const ImplicitBody& body, const NodeArrays& nodes, double h, std::vector<NodePairStiffness>& out) {

@@ -17,14 +17,27 @@
 // holds a resting jelly stays 12 % squashed, and a dropped one, whose upper layers fall on
 // through the impact step with nothing resisting, is launched higher than it fell.
 //
-// The same h D + h² K goes to the body's direct block (addImplicitStiffness), so that impulses
-// from contacts and attachments move the body as this step would.
+// A moving support (a dynamic body resting on the body, models/supports.h) adds its velocity
+// change (ΔV, ΔΩ) to the unknowns: its held nodes take n (n · (ΔV + ΔΩ × r)) on top of their
+// prescribed change, and the system solved is the one restricted to those motions,
+//   [ Sᵀ A S     Sᵀ A N ] [ y  ]   [ Sᵀ b               ]
+//   [ Nᵀ A S   M + Nᵀ A N ] [ ΔY ] = [ Nᵀ b + (h m g, 0) ],   M = diag(m I, I_world),
+// (the prescribed part's product moved to the right), with S the filter and N the map from
+// (ΔV, ΔΩ) to the held nodes' normal motion: still
+// symmetric positive definite, so the same conjugate gradients solve it (a 3 × 3 Jacobi block per
+// support and motion). Implicit bodies that share a moving support are solved as one system.
+// A hold's impulse c = (A Δv − b) · n on a node is −c n on its support at r.
+//
+// The same h D + h² K goes to the body's direct block (addImplicitStiffness) when it has one
+// (rows of its own: anchors, fixed points), so that impulses from contacts and attachments move
+// the body as this step would.
 #pragma once
 
 #include "models/corotational_fem.h"
 #include "models/mass_spring.h"
 #include "models/supports.h"
 
+#include <span>
 #include <vector>
 
 namespace tandem {
@@ -50,19 +63,36 @@ struct SpringBlocks {
   Mat3 damping = Mat3::Zero();
 };
 
-// Working memory of solveImplicitVelocities (per node of the body, local), kept by the caller
-// between steps so that the solve allocates nothing once grown.
-struct ImplicitSolveScratch {
-  std::vector<Vec3> velocity, force, product, b, stiffnessTimesVelocity, held, r, z, p, ap;
-  std::vector<double> preconditioner, heldChange;
-  std::vector<EdgeSpring> springs;  // the body's, local indices
-  std::vector<SpringBlocks> springBlocks;
+// A dynamic body that implicit bodies rest on, moving with their solve (models/supports.h): its
+// mass and inertia (world frame, about its centre of mass).
+struct MovingSupport {
+  int32_t body = -1;
+  double mass = 0.0;
+  Mat3 inertia = Mat3::Zero();
 };
 
-// v ← v + Δv for the body's free nodes; gravity and the forces already in `nodes.force` are
-// its external forces, taken explicitly. Writes the holds' impulses to `supports`.
-void solveImplicitVelocities(ImplicitBody& body, Supports& supports, NodeArrays& nodes, const Vec3& gravity,
-                             double timeStep, ImplicitSolveScratch& scratch);
+// Working memory of solveImplicitVelocities (per node of the solved bodies, in their order),
+// kept by the caller between steps so that the solve allocates nothing once grown.
+struct ImplicitSolveScratch {
+  std::vector<Vec3> velocity, force, product, b, stiffnessTimesVelocity, held, r, z, p, ap, full, x;
+  std::vector<double> mass, preconditioner, heldChange;
+  std::vector<Vec3> offset;         // per node on a moving support: from its centre of mass
+  std::vector<int32_t> movingOf;    // per node: its moving support's index, or −1
+  std::vector<int32_t> sliceStart;  // per body: its first node in these vectors
+  std::vector<EdgeSpring> springs;  // the bodies', in these vectors' indices
+  std::vector<SpringBlocks> springBlocks;
+  // Per moving support, linear then angular: Δ, residual, preconditioned residual, direction,
+  // product, and the preconditioner's 3 × 3 blocks (inverted).
+  std::vector<Vec3> supportChange, supportResidual, supportPreconditioned, supportDirection, supportProduct;
+  std::vector<Mat3> supportPreconditioner;
+};
+
+// v ← v + Δv for the bodies' free nodes, solved together with the moving supports they share
+// (one body alone when it has none); gravity and the forces already in `nodes.force` are their
+// external forces, taken explicitly. Writes the holds' impulses to each body's supports.
+void solveImplicitVelocities(std::span<ImplicitBody* const> bodies, std::span<Supports* const> supports,
+                             std::span<MovingSupport> moving, NodeArrays& nodes, const Vec3& gravity, double timeStep,
+                             ImplicitSolveScratch& scratch);
 
 // h D + h² (−K) at the current state, as node-pair blocks (global indices), for a direct block;
 // the elements' rotations are the solve's (the nodes have not moved since).

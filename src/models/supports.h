@@ -1,5 +1,5 @@
-// Surfaces a deformable's nodes rest on: the static and kinematic bodies they touched or were
-// about to touch last step, kept for the models stage of the next.
+// Surfaces a deformable's nodes rest on: the bodies they touched or were about to touch last
+// step, kept for the models stage of the next.
 //
 // The models stage runs before the coupling solver sees this step's contacts. A model that
 // ignores them relieves a resting body's stress into the ground (an implicit FEM jelly rests
@@ -11,6 +11,24 @@
 // The support carries the hold's impulse c: it is kept per node (holdImpulse), reported as
 // part of the node's contact with that surface and of the surface's impulse from deformables,
 // and it bounds that contact's friction with the contact's own λₙ (constraints/contact.h).
+//
+// Moving supports. A dynamic body resting on an implicit (FEM, mass-spring) body is a surface
+// that moves with the model's solve: its normal velocity at each held node is its own unknown,
+//   v*·n = (w + Δw + (ω + Δω) × r)·n − max(gap, 0) / h,
+// and the body (its whole mass and inertia, with gravity) is solved together with the nodes
+// (models/implicit_solve.h); the hold's impulse c on a node is −c on the body at r, so momentum is
+// kept. Why: the contact rows see only the nodes' own masses, and the elastic forces act in the
+// next step's model stage, so a body resting on a light jelly could be given at most
+// m_nodes · (squash) / h per step: a 2 kg plate on a 0.5 kg jelly sank 15 mm through it in 3 s
+// (its elastic answer is 3.1 mm), and a 1 kg bar across four 0.5 kg jellies to the plate
+// under them. Held this way the jelly carries the plate with its whole stiffness in the step
+// it is loaded. A body held by several implicit bodies (a bar on two jellies) is solved with all
+// of them at once: solved apart, each with a share of the bar's mass and inertia by last step's
+// load, they disagreed about its rotation and spun it up (0.7 rad/s within 2 steps, 80 in 35). The body's other supports (contacts with other
+// bodies, deformables whose models are not implicit) act in the sweep as before: at rest the
+// holds carry what the solve finds the elastic body pushing, and the rows the rest. A node is
+// held on a dynamic body that pressed on it last step (λₙ + c > 0), if the body is awake and not
+// jointed to the world, and the node is not in a direct block (whose solve couples it already).
 #pragma once
 
 #include <tandem/types.h>
@@ -29,6 +47,11 @@ struct Supports {
   std::vector<Vec3> normal;
   std::vector<double> gap, speed;
   std::vector<int32_t> body;
+  // A dynamic body among them (a plate on a jelly) moves with the model's solve
+  // (models/implicit_solve.h): per node whether its surface does, and the contact point's offset
+  // from that body's centre of mass.
+  std::vector<char> moves;
+  std::vector<Vec3> offset;
   // This step's holds: the impulse each support gave its node (N·s), and that support's body.
   std::vector<Vec3> holdImpulse;
   std::vector<int32_t> holdBody;
@@ -39,6 +62,8 @@ struct Supports {
     gap.assign(count, 0.0);
     speed.assign(count, 0.0);
     body.assign(count, -1);
+    moves.assign(count, 0);
+    offset.assign(count, Vec3::Zero());
   }
   void clearHolds() {
     holdImpulse.assign(normal.size(), Vec3::Zero());
@@ -56,6 +81,16 @@ struct Supports {
     gap[i] = gapAtEnd;
     speed[i] = normalSpeed;
     body[i] = rigidBody;
+    moves[i] = 0;
+  }
+  // A dynamic body's surface, moving with the solve, at `fromCentre` from its centre of mass.
+  void addMoving(int32_t node, int32_t rigidBody, const Vec3& n, double gapAtEnd, double normalSpeed,
+                 const Vec3& fromCentre) {
+    const auto i = static_cast<size_t>(node - firstNode);
+    if (node < firstNode || i >= normal.size() || (!normal[i].isZero() && gap[i] <= gapAtEnd)) return;
+    add(node, rigidBody, n, gapAtEnd, normalSpeed);
+    moves[i] = 1;
+    offset[i] = fromCentre;
   }
   // The normal velocity a held node gets this step.
   double targetSpeed(size_t i, double timeStep) const { return speed[i] - std::max(gap[i], 0.0) / timeStep; }
@@ -67,7 +102,7 @@ struct Supports {
   void hold(std::span<Vec3> velocity, std::span<const double> inverseMass, double timeStep) {
     clearHolds();
     for (size_t i = 0; i < normal.size(); ++i) {
-      if (normal[i].isZero() || inverseMass[i] == 0.0) continue;
+      if (normal[i].isZero() || moves[i] || inverseMass[i] == 0.0) continue;
       const double missing = targetSpeed(i, timeStep) - normal[i].dot(velocity[i]);
       if (missing <= 0) continue;
       velocity[i] += missing * normal[i];

@@ -3,7 +3,7 @@
 // deformables that anchors tie to the same dynamic rigid bodies, with those bodies: a rod
 // hung on two ropes with a curtain on it is one block, so one sweep solves all of it. Groups
 // touching one dynamic body are one block as well, with the free-node bodies touching it
-// (World::Impl::buildDirectBlocks): a bar on four jellies is held up by all four in one solve.
+// (World::Impl::buildDirectBlocks): a box on two hammocks is held up by both in one solve.
 //
 // Why. Projected Gauss-Seidel converges at a rate that falls with the mass ratio across a
 // chain of rows times the square of its length: a 10 g-per-node rope holding a 1 kg box needs
@@ -34,8 +34,9 @@
 // Elastic stiffness. An FEM body's v* comes from the implicit solve (M − h² K) Δv = …, so an
 // impulse on it moves its nodes by (M − h² K)⁻¹ Jᵀ Δλ, not by M⁻¹ Jᵀ Δλ: a box set on a jelly is
 // held by the whole jelly at once, not by the few light nodes under it. h² K_e = −h² K (from
-// the FEM model, the same rotations as its solve) enters H; an FEM body always has a block, so
-// its contacts join it. Its columns sum to zero too.
+// the FEM model, the same rotations as its solve) enters H when the body has a block (rows of
+// its own, or set `direct`), and its contacts join it. Its columns sum to zero too. An FEM body
+// without rows is swept: its own solve carries what rests on it (models/supports.h).
 //
 // Velocities are set from M Δv = Jᵀ Δλ − h² (K_g + K_e) Δv after the solve, so momentum is exact
 // to rounding whatever the solve's own residual.
