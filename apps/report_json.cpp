@@ -82,7 +82,9 @@ Json rowsJson(const RunLog& log, const StepReport& last) {
 Json convergenceJson(const RunLog& log, const StepReport& last) {
   return Json{{"rms_delta_lambda_last_step", last.rmsDeltaLambda},
               {"rms_delta_lambda_mean", log.meanRmsDeltaLambda()},
-              {"block_factorisations", log.blockFactorisations()}};
+              {"block_factorisations", log.blockFactorisations()},
+              {"max_model_iterations", log.maxModelIterations()},
+              {"unconverged_model_steps", log.unconvergedModelSteps()}};
 }
 
 Json impactZonesJson(const RunLog& log, const StepReport& last) {

@@ -54,6 +54,8 @@ void RunLog::add(const StepReport& report, double wallMs, double time) {
   m_maxImpactZoneNodes = std::max(m_maxImpactZoneNodes, report.impactZoneNodes);
   if (report.impactZones > 0) ++m_stepsWithImpactZones;
   m_blockFactorisations += report.blockFactorisations;
+  m_maxModelIterations = std::max(m_maxModelIterations, report.modelIterations);
+  if (!report.modelsConverged) ++m_unconvergedModelSteps;
   if (report.rmsDeltaLambda.size() > m_rmsSums.size()) {
     m_rmsSums.resize(report.rmsDeltaLambda.size(), 0.0);
     m_rmsCounts.resize(report.rmsDeltaLambda.size(), 0);

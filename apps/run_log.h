@@ -56,6 +56,8 @@ class RunLog {
   int maxImpactZoneNodes() const { return m_maxImpactZoneNodes; }
   int64_t stepsWithImpactZones() const { return m_stepsWithImpactZones; }
   int64_t blockFactorisations() const { return m_blockFactorisations; }  // over the run
+  int maxModelIterations() const { return m_maxModelIterations; }          // in any one step
+  int64_t unconvergedModelSteps() const { return m_unconvergedModelSteps; }
   // Every violated row reported over the run (the first kViolationsKept of them are kept).
   int64_t violationCount() const { return m_violationCount; }
   const std::vector<LoggedViolation>& violations() const { return m_violations; }
@@ -86,6 +88,8 @@ class RunLog {
   int m_maxImpactZoneNodes = 0;
   int64_t m_stepsWithImpactZones = 0;
   int64_t m_blockFactorisations = 0;
+  int m_maxModelIterations = 0;
+  int64_t m_unconvergedModelSteps = 0;
   int64_t m_violationCount = 0;
   std::vector<LoggedViolation> m_violations;
   std::vector<double> m_rmsSums;

@@ -75,6 +75,9 @@ void printReport(const StepReport& report, const RunLog& log) {
   std::printf("Impact zones, last step: %d, holding %d nodes\n", report.impactZones, report.impactZoneNodes);
   std::printf("Direct-block factorisations: %lld in %lld steps\n", static_cast<long long>(log.blockFactorisations()),
               static_cast<long long>(log.steps()));
+  std::printf("Implicit models' solves: at most %d conjugate-gradient iterations in a step; %lld steps short of "
+              "their tolerance\n",
+              log.maxModelIterations(), static_cast<long long>(log.unconvergedModelSteps()));
   std::printf("RMS of delta-lambda per iteration, last step (N s):");
   for (double rms : report.rmsDeltaLambda) std::printf(" %.3g", rms);
   std::printf("\n");

@@ -53,6 +53,7 @@ Status World::applyImpulse(RigidBodyId body, const Vec3& impulse) {
   if (Status s = checkDynamic(*m_impl, body, "apply impulse"); !s) return s;
   if (Status s = checkFinite(impulse, "apply impulse", "impulse"); !s) return s;
   m_impl->bullet.applyImpulse(body.index, impulse, Vec3::Zero());
+  m_impl->forgetMovingSupport(body.index);
   return {};
 }
 
@@ -61,6 +62,7 @@ Status World::applyImpulseAtPoint(RigidBodyId body, const Vec3& impulse, const V
   if (Status s = checkFinite(impulse, "apply impulse at point", "impulse"); !s) return s;
   if (Status s = checkFinite(point, "apply impulse at point", "point"); !s) return s;
   m_impl->bullet.applyImpulse(body.index, impulse, point - m_impl->bullet.position(body.index));
+  m_impl->forgetMovingSupport(body.index);
   return {};
 }
 
@@ -68,6 +70,7 @@ Status World::applyAngularImpulse(RigidBodyId body, const Vec3& angularImpulse) 
   if (Status s = checkDynamic(*m_impl, body, "apply angular impulse"); !s) return s;
   if (Status s = checkFinite(angularImpulse, "apply angular impulse", "angular impulse"); !s) return s;
   m_impl->bullet.applyAngularImpulse(body.index, angularImpulse);
+  m_impl->forgetMovingSupport(body.index);
   return {};
 }
 
@@ -75,6 +78,7 @@ Status World::setRigidLinearVelocity(RigidBodyId body, const Vec3& velocity) {
   if (Status s = checkDynamic(*m_impl, body, "set linear velocity"); !s) return s;
   if (Status s = checkFinite(velocity, "set linear velocity", "velocity"); !s) return s;
   m_impl->bullet.setLinearVelocity(body.index, velocity);
+  m_impl->forgetMovingSupport(body.index);
   return {};
 }
 
@@ -82,6 +86,7 @@ Status World::setRigidAngularVelocity(RigidBodyId body, const Vec3& velocity) {
   if (Status s = checkDynamic(*m_impl, body, "set angular velocity"); !s) return s;
   if (Status s = checkFinite(velocity, "set angular velocity", "angular velocity"); !s) return s;
   m_impl->bullet.setAngularVelocity(body.index, velocity);
+  m_impl->forgetMovingSupport(body.index);
   return {};
 }
 
@@ -91,6 +96,7 @@ Status World::setRigidPose(RigidBodyId body, const Vec3& position, const Quat& o
   if (!orientation.coeffs().allFinite() || orientation.norm() < 1e-9)
     return Error{"set pose: orientation must be a finite non-zero quaternion"};
   m_impl->bullet.setPose(body.index, position, orientation);
+  m_impl->forgetMovingSupport(body.index);
   return {};
 }
 
@@ -260,6 +266,7 @@ Status World::removeRigidBody(RigidBodyId body) {
       }
   }
   w.rigid[b] = RigidSolverState{};
+  w.forgetMovingSupport(b);
   w.rigidGroup[b] = w.rigidMask[b] = 0;  // collides with nothing of Tandem's
   w.rigidSlots.remove(b, false);
   w.directBlocksStale = true;

@@ -32,9 +32,12 @@ inline bool isPositive(double value) { return value > 0 && !std::isnan(value); }
 // Passes over the contacts no direct block holds, after the blocks, in each iteration.
 inline constexpr int kFreeContactPasses = 4;
 
-// What a rigid body's holds on implicit bodies gave it this step (models/supports.h).
-struct MovingSupportReaction {
-  Vec3 impulse, angularImpulse;  // the latter about its centre of mass
+// A rigid body as a moving support of implicit bodies (models/supports.h): its velocity before
+// this step's holds and what they gave it (impulse, and angular impulse about its centre of
+// mass), so that the next step's solve knows what else acted on it over the step.
+struct MovingSupportRecord {
+  bool valid = false;  // a moving support this step, not set or pushed from outside since
+  Vec3 linearVelocity, angularVelocity, impulse, angularImpulse;
 };
 
 struct DeformableRecord {
@@ -160,7 +163,11 @@ struct World::Impl final : bullet::SolverHooks {
   std::vector<ImplicitBody*> implicitBodies;
   std::vector<Supports*> implicitSupports;
   std::vector<MovingSupport> movingSupports;
-  std::vector<MovingSupportReaction> movingSupportReactions;  // per rigid body, this step's
+  std::vector<MovingSupportRecord> movingSupportRecords;  // per rigid body
+  // A body set or pushed from outside the step: what acted on it last step says nothing of the next.
+  void forgetMovingSupport(int32_t body) {
+    if (body >= 0 && static_cast<size_t>(body) < movingSupportRecords.size()) movingSupportRecords[body].valid = false;
+  }
   std::vector<Vec3> sweepStartVelocity;  // the nodes' velocities before the warm start
 
   StepReport report;

@@ -25,6 +25,7 @@ struct WorldSnapshot::Data {
   ConstraintRows rows;
   std::vector<std::pair<uint64_t, ContactImpulse>> previousContacts;
   std::vector<RigidSolverState> rigid;
+  std::vector<MovingSupportRecord> movingSupportRecords;
   std::vector<uint32_t> rigidGroup, rigidMask;
   IdSlots deformableSlots{""}, anchorSlots{""}, fixedPointSlots{""}, grabSlots{""};
   StepReport report;
@@ -60,6 +61,7 @@ WorldSnapshot World::snapshot() const {
   data->rows = w.rows;
   data->previousContacts = w.previousContacts;
   data->rigid = w.rigid;
+  data->movingSupportRecords = w.movingSupportRecords;
   data->rigidGroup = w.rigidGroup;
   data->rigidMask = w.rigidMask;
   data->deformableSlots = w.deformableSlots;
@@ -90,6 +92,7 @@ Status World::restore(const WorldSnapshot& snapshot) {
   w.rows = data->rows;
   w.previousContacts = data->previousContacts;
   w.rigid = data->rigid;
+  w.movingSupportRecords = data->movingSupportRecords;
   for (size_t b = 0; b < w.rigidGroup.size(); ++b)
     if (w.rigidSlots.liveIndex(static_cast<int32_t>(b)) &&
         (w.rigidGroup[b] != data->rigidGroup[b] || w.rigidMask[b] != data->rigidMask[b]))

@@ -11,6 +11,13 @@ void World::Impl::computeUnconstrainedVelocities(double h) {
   addSpringForces(springs, nodes);
   for (DeformableRecord& body : deformables) body.supports.clearHolds();
   solveImplicitBodies(h);
+  report.modelIterations = 0;
+  report.modelsConverged = true;
+  for (const DeformableRecord& body : deformables)
+    if (body.implicitStep) {
+      report.modelIterations = std::max(report.modelIterations, body.implicit.lastIterations);
+      report.modelsConverged &= body.implicit.lastConverged;
+    }
   for (DeformableRecord& body : deformables) {
     if (!body.implicitStep)
       for (int32_t i = body.firstNode; i < body.firstNode + body.nodeCount; ++i)
@@ -48,7 +55,7 @@ void World::Impl::solveImplicitBodies(double h) {
         group[root(static_cast<int32_t>(d))] = root(other);
     }
   }
-  movingSupportReactions.assign(rigid.size(), {Vec3::Zero(), Vec3::Zero()});
+  movingSupportRecords.resize(rigid.size());
   for (size_t d = 0; d < count; ++d) {
     if (!deformables[d].implicitStep || root(static_cast<int32_t>(d)) != static_cast<int32_t>(d)) continue;
     implicitBodies.clear();
@@ -59,14 +66,26 @@ void World::Impl::solveImplicitBodies(double h) {
       implicitBodies.push_back(&deformables[e].implicit);
       implicitSupports.push_back(&deformables[e].supports);
     }
+    // Each moving support of the group, with what else acted on it last step: its momentum's
+    // change less gravity's and the holds' (nothing if it was not a moving support then).
     for (size_t b = 0; b < rigid.size(); ++b) {
       if (firstOnBody[b] < 0 || root(firstOnBody[b]) != static_cast<int32_t>(d)) continue;
       const auto index = static_cast<int>(b);
+      MovingSupportRecord& record = movingSupportRecords[b];
       // Asleep or made still since last step: its nodes are not held this step.
       if (!bullet.isDynamic(index) || !bullet.isAwake(index) || rigid[b].inverseMass == 0.0 ||
-          rigid[b].inverseInertia.determinant() <= 0.0)
+          rigid[b].inverseInertia.determinant() <= 0.0) {
+        record.valid = false;
         continue;
-      movingSupports.push_back({index, bullet.mass(index), rigid[b].inverseInertia.inverse()});
+      }
+      MovingSupport support{index, bullet.mass(index), rigid[b].inverseInertia.inverse()};
+      const Vec3 linear = bullet.linearVelocity(index), angular = bullet.angularVelocity(index);
+      if (record.valid) {
+        support.otherImpulse = support.mass * (linear - record.linearVelocity - h * settings.gravity) - record.impulse;
+        support.otherAngularImpulse = support.inertia * (angular - record.angularVelocity) - record.angularImpulse;
+      }
+      record = {true, linear, angular, Vec3::Zero(), Vec3::Zero()};
+      movingSupports.push_back(support);
     }
     solveImplicitVelocities(implicitBodies, implicitSupports, movingSupports, nodes, settings.gravity, h,
                             implicitScratch);  // gravity included
@@ -74,20 +93,22 @@ void World::Impl::solveImplicitBodies(double h) {
     for (const Supports* supports : implicitSupports)
       for (size_t i = 0; i < supports->holdBody.size(); ++i)
         if (supports->holdBody[i] >= 0 && supports->moves[i]) {
-          MovingSupportReaction& reaction = movingSupportReactions[supports->holdBody[i]];
-          reaction.impulse -= supports->holdImpulse[i];
-          reaction.angularImpulse -= supports->offset[i].cross(supports->holdImpulse[i]);
+          MovingSupportRecord& record = movingSupportRecords[supports->holdBody[i]];
+          record.impulse -= supports->holdImpulse[i];
+          record.angularImpulse -= supports->offset[i].cross(supports->holdImpulse[i]);
         }
   }
+  for (size_t b = 0; b < rigid.size(); ++b)
+    if (firstOnBody[b] < 0) movingSupportRecords[b].valid = false;
   if (settings.solver.substeps == 1) giveMovingSupportsTheirReactions(1.0);
 }
 
 void World::Impl::giveMovingSupportsTheirReactions(double fraction) {
-  for (size_t b = 0; b < movingSupportReactions.size(); ++b) {
-    const MovingSupportReaction& reaction = movingSupportReactions[b];
-    if (reaction.impulse.isZero() && reaction.angularImpulse.isZero()) continue;
-    bullet.applyImpulse(static_cast<int>(b), fraction * reaction.impulse, Vec3::Zero());
-    bullet.applyAngularImpulse(static_cast<int>(b), fraction * reaction.angularImpulse);
+  for (size_t b = 0; b < movingSupportRecords.size(); ++b) {
+    const MovingSupportRecord& record = movingSupportRecords[b];
+    if (!record.valid) continue;
+    bullet.applyImpulse(static_cast<int>(b), fraction * record.impulse, Vec3::Zero());
+    bullet.applyAngularImpulse(static_cast<int>(b), fraction * record.angularImpulse);
   }
 }
 

@@ -42,6 +42,11 @@ struct StepReport {
   // Sparse factorisations of the direct blocks' KKT matrices this step (a block whose pattern is
   // unchanged keeps last step's while it still solves this step's matrix to 1e-4).
   int blockFactorisations = 0;
+  // Conjugate-gradient iterations of the implicit models' velocity solves this step (the most of
+  // any one solve), and whether each met its tolerance, 10⁻⁴ of its right-hand side, within its
+  // limit of 100 (models/implicit_solve.h).
+  int modelIterations = 0;
+  bool modelsConverged = true;
   // The worst violated row of each kind per deformable, at the step's end (empty when all hold).
   std::vector<RowViolation> violations;
   double totalSeconds = 0.0;

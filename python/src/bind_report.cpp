@@ -74,6 +74,10 @@ void bindReport(py::module_& module) {
       .def_readonly("impact_zone_nodes", &StepReport::impactZoneNodes, "Nodes in them.")
       .def_readonly("block_factorisations", &StepReport::blockFactorisations,
                     "Sparse factorisations of the direct blocks this step (0 when last step's were kept).")
+      .def_readonly("model_iterations", &StepReport::modelIterations,
+                    "Conjugate-gradient iterations of the implicit models' solves this step (the most of any).")
+      .def_readonly("models_converged", &StepReport::modelsConverged,
+                    "Whether every implicit model's solve met its tolerance within its iteration limit.")
       .def_readonly("violations", &StepReport::violations, "RowViolation list, empty when every row holds.")
       .def_readonly("total_seconds", &StepReport::totalSeconds, "Wall-clock seconds the step took.")
       .def_property_readonly("total_rows", &StepReport::totalRows, "Scalar rows of every type.")
@@ -89,6 +93,8 @@ void bindReport(py::module_& module) {
             d["impact_zones"] = r.impactZones;
             d["impact_zone_nodes"] = r.impactZoneNodes;
             d["block_factorisations"] = r.blockFactorisations;
+            d["model_iterations"] = r.modelIterations;
+            d["models_converged"] = r.modelsConverged;
             py::list violations;
             for (const RowViolation& v : r.violations) violations.append(violationDict(v));
             d["violations"] = violations;

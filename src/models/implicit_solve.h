@@ -52,7 +52,8 @@ struct ImplicitBody {
   // Per node (local): a third of the trace of its diagonal block of −K from the elements (a
   // rotation leaves it unchanged), for the solve's Jacobi preconditioner; made at the first solve.
   std::vector<double> stiffnessDiagonal;
-  int lastIterations = 0;  // conjugate-gradient iterations of the last step
+  int lastIterations = 0;      // conjugate-gradient iterations of the last step
+  bool lastConverged = true;   // whether they met the tolerance within their limit
 };
 
 ImplicitBody makeImplicitBody(int32_t firstNode, int32_t nodeCount, FemElements fem, std::vector<EdgeSpring> springs);
@@ -64,11 +65,14 @@ struct SpringBlocks {
 };
 
 // A dynamic body that implicit bodies rest on, moving with their solve (models/supports.h): its
-// mass and inertia (world frame, about its centre of mass).
+// mass and inertia (world frame, about its centre of mass), and the impulse and angular impulse
+// the rest of the world gives it in the step besides gravity, taken as last step's (its other
+// contacts and joints, the sweep's rows).
 struct MovingSupport {
   int32_t body = -1;
   double mass = 0.0;
   Mat3 inertia = Mat3::Zero();
+  Vec3 otherImpulse = Vec3::Zero(), otherAngularImpulse = Vec3::Zero();
 };
 
 // Working memory of solveImplicitVelocities (per node of the solved bodies, in their order),
