@@ -114,7 +114,7 @@ TEST(Paradigms, FemStiffnessBlocksAreTheStiffnessProduct) {
     nodes.position = movedRigidly(mesh.positions, rng, rotation, translation);
     for (Vec3& x : nodes.position) x = translation + rotation * Vec3(1.0, 0.8, 1.1).cwiseProduct(rotation.transpose() * (x - translation)) + Vec3(jostle(rng), jostle(rng), jostle(rng));
     nodes.force.assign(mesh.positions.size(), Vec3::Zero());
-    std::vector<Mat3> rotations(elements.tetrahedra.size());
+    std::vector<Mat3> rotations(elements.tetrahedra.size(), Mat3::Identity());
     addFemForces(elements, nodes.position, nodes.force, 0, rotations);
     std::vector<NodePairStiffness> blocks;
     addFemStiffnessBlocks(elements, rotations, h, blocks);

@@ -38,6 +38,7 @@ ImplicitBody makeImplicitBody(int32_t firstNode, int32_t nodeCount, FemElements 
   body.fem = std::move(fem);
   body.springs = std::move(springs);
   body.previousStep.assign(nodeCount, Vec3::Zero());
+  body.rotations.assign(body.fem.tetrahedra.size(), Mat3::Identity());
   return body;
 }
 
@@ -76,7 +77,7 @@ void solveImplicitVelocities(std::span<ImplicitBody* const> bodies, std::span<Su
   for (size_t k = 0; k < bodies.size(); ++k) {
     ImplicitBody& body = *bodies[k];
     const std::span<const Vec3> position(nodes.position.data() + body.firstNode, body.nodeCount);
-    body.rotations.resize(body.fem.tetrahedra.size());
+    body.rotations.resize(body.fem.tetrahedra.size(), Mat3::Identity());
     addFemForces(body.fem, position, std::span<Vec3>(force.data() + sliceStart[k], body.nodeCount), body.firstNode,
                  body.rotations);
     for (EdgeSpring spring : body.springs) {
