@@ -186,8 +186,8 @@ void solveImplicitVelocities(std::span<ImplicitBody* const> bodies, std::span<Su
 
   // Filtered conjugate gradients (Baraff and Witkin 1998), Jacobi-preconditioned, from last step's
   // Δv: S takes out the held normal components; a moving support's motion (V, Ω) comes back in
-  // through them, n (n · (V + Ω × r)) at each of its held nodes, and its share of mass and
-  // inertia is its own part of the system, with its gravity.
+  // through them, n (n · (V + Ω × r)) at each of its held nodes, and its mass and inertia are its
+  // own part of the system, with its gravity and the impulse the rest of the world gives it.
   const auto supportCount = static_cast<int32_t>(moving.size());
   auto filter = [&](std::vector<Vec3>& y) {
     for (int32_t i = 0; i < count; ++i) y[i] -= held[i].dot(y[i]) * held[i];
@@ -262,7 +262,7 @@ void solveImplicitVelocities(std::span<ImplicitBody* const> bodies, std::span<Su
   int iteration = 0;
   bool converged = false;
   for (int round = 0; round < kMaxRounds; ++round) {
-    bool checked = false;  // this round's early look at the holds
+    bool checked = false, restart = false;  // this round's early look at the holds, and what it found
     for (int32_t i = 0; i < count; ++i) {
       const int32_t m = movesWith(i);
       const double normal = heldChange[i] + (m >= 0 ? held[i].dot(X[2 * m] + X[2 * m + 1].cross(offset[i])) : 0.0);
@@ -331,7 +331,8 @@ void solveImplicitVelocities(std::span<ImplicitBody* const> bodies, std::span<Su
       // in the last round, which converges whatever it holds).
       if (!checked && round + 1 < kMaxRounds && rr <= kEarlyCheckTolerance * kEarlyCheckTolerance * bNorm) {
         checked = true;
-        if (releasePulling(true)) break;
+        restart = releasePulling(true);
+        if (restart) break;
       }
       const double next = precondition();
       const double beta = next / rz;
@@ -339,8 +340,8 @@ void solveImplicitVelocities(std::span<ImplicitBody* const> bodies, std::span<Su
       for (int32_t i = 0; i < count; ++i) p[i] = z[i] + beta * p[i];
       for (int32_t j = 0; j < 2 * supportCount; ++j) P[j] = Z[j] + beta * P[j];
     }
-    converged = rr <= kRelativeTolerance * kRelativeTolerance * bNorm;
-    if (!converged && iteration < kMaxIterations) continue;  // let go of holds early: solve again
+    converged = !restart && rr <= kRelativeTolerance * kRelativeTolerance * bNorm;
+    if (restart) continue;              // holds let go early: solve again
     if (!releasePulling(false)) break;  // and solve again if any were let go at the end
   }
   for (size_t k = 0; k < bodies.size(); ++k) {
