@@ -15,20 +15,21 @@
 // Moving supports. A dynamic body resting on an implicit (FEM, mass-spring) body is a surface
 // that moves with the model's solve: its normal velocity at each held node is its own unknown,
 //   v*·n = (w + Δw + (ω + Δω) × r)·n − max(gap, 0) / h,
-// and the body (its whole mass and inertia, with gravity) is solved together with the nodes
-// (models/implicit_solve.h); the hold's impulse c on a node is −c on the body at r, so momentum is
-// kept. Why: the contact rows see only the nodes' own masses, and the elastic forces act in the
-// next step's model stage, so a body resting on a light jelly could be given at most
-// m_nodes · (squash) / h per step: a 2 kg plate on a 0.5 kg jelly sank 15 mm through it in 3 s
-// (its elastic answer is 3.1 mm), and a 1 kg bar across four 0.5 kg jellies to the plate
-// under them. Held this way the jelly carries the plate with its whole stiffness in the step
-// it is loaded. A body held by several implicit bodies (a bar on two jellies) is solved with all
-// of them at once: solved apart, each with a share of the bar's mass and inertia by last step's
-// load, they disagreed about its rotation and spun it up (0.7 rad/s within 2 steps, 80 in 35). The body's other supports (contacts with other
-// bodies, deformables whose models are not implicit) act in the sweep as before: at rest the
-// holds carry what the solve finds the elastic body pushing, and the rows the rest. A node is
-// held on a dynamic body that pressed on it last step (λₙ + c > 0), if the body is awake and not
-// jointed to the world, and the node is not in a direct block (whose solve couples it already).
+// and the body (its whole mass and inertia, with gravity and what the rest of the world gave it
+// over the last step) is solved together with the nodes (models/implicit_solve.h); the hold's
+// impulse c on a node is −c on the body at r, so momentum is kept. Why: the contact rows see
+// only the nodes' own masses, and the elastic forces act in the next step's model stage, so a
+// body resting on a light jelly could be given at most m_nodes · (squash) / h per step: a 2 kg
+// plate on a 0.5 kg jelly sank 15 mm into it in 3 s (its elastic answer is 3.1 mm), and a 1 kg
+// bar across four 0.5 kg jellies went down to the plate under them. Held this way the jelly
+// carries the plate with its whole stiffness in the step it is loaded. A body held by several
+// implicit bodies (a bar on two jellies) is solved with all of them at once: solved apart, each
+// with a share of the bar's mass and inertia by last step's load, they disagreed about its
+// rotation and spun it up (0.7 rad/s within 2 steps, 80 in 35). The body's other supports
+// (contacts with other bodies, deformables whose models are not implicit) act in the sweep as
+// before. A node is held on a dynamic body that pressed on it last step (λₙ + c > 0), if the
+// body is awake and not jointed to the world, and the node is not in a direct block (whose solve
+// couples it already).
 #pragma once
 
 #include <tandem/types.h>
