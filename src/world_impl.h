@@ -58,6 +58,7 @@ struct DeformableRecord {
   ImplicitBody implicit;
   Supports supports;  // surfaces its nodes rest on, from last step (models/supports.h)
   bool removed = false;  // removed: its nodes stay in the arrays, inert (src/world_edit.cpp)
+  bool inDirectBlock = false;  // its nodes are one of the direct blocks' (set by buildDirectBlocks)
   // A surface without tetrahedra with a node that no boundary edge reaches (a sheet, not a
   // ribbon): its limited edges are projected together (solver/strain_limiting.h).
   bool hasInteriorSurfaceNodes = false;

@@ -116,12 +116,6 @@ void World::Impl::addHoldImpulsesToSupports() {
 void World::Impl::rememberSupports() {
   for (DeformableRecord& body : deformables) body.supports.reset(body.firstNode, body.nodeCount);
   const SolverContext ctx = context();
-  // A dynamic body is a moving support of the swept implicit bodies that pressed on it last step.
-  std::vector<char>& inBlock = supportAssigned;  // scratch: per node, whether a direct block holds it
-  inBlock.assign(nodes.size(), 0);
-  for (const DirectBlock& block : directBlocks)
-    for (const DirectBlock::NodeRange& range : block.ranges())
-      std::fill_n(inBlock.begin() + range.first, range.count, 1);
   for (const ContactRow& row : rows.contacts) {
     if (!row.isNodeOnRigid()) continue;
     const double surfaceSpeed = row.normal.dot(rigid[row.body].velocityAt(row.offset));
@@ -131,7 +125,8 @@ void World::Impl::rememberSupports() {
       body.supports.add(row.node[0], row.body, row.normal, gapAtEnd, surfaceSpeed);
       continue;
     }
-    if (!body.implicitStep || inBlock[row.node[0]] || rigid[row.body].isJointed() ||
+    // A dynamic body is a moving support of the swept implicit bodies that pressed on it last step.
+    if (!body.implicitStep || body.inDirectBlock || rigid[row.body].isJointed() ||
         row.lambdaNormal + row.supportImpulse <= 0.0)
       continue;
     body.supports.addMoving(row.node[0], row.body, row.normal, gapAtEnd, surfaceSpeed, row.offset);

@@ -18,21 +18,16 @@ void World::Impl::prepareRows(double h) {
   }
   std::vector<NodePairStiffness>& elastic = implicitStiffness;  // h D + h² K_e of the implicit bodies
   elastic.clear();
-  auto inBlock = [&](const DeformableRecord& body) {
-    for (const DirectBlock& block : directBlocks)
-      for (const DirectBlock::NodeRange& range : block.ranges())
-        if (range.first == body.firstNode && range.tied) return true;
-    return false;
-  };
   if (anyRows)
     for (const DeformableRecord& body : deformables)
-      if (body.implicitStep && inBlock(body)) addImplicitStiffness(body.implicit, nodes, h, elastic);
+      if (body.implicitStep && body.inDirectBlock) addImplicitStiffness(body.implicit, nodes, h, elastic);
   for (DirectBlock& block : directBlocks) block.prepare(rows, nodes, rigid, h, elastic);
   report.rowCounts = rows.countRows();
 }
 
 void World::Impl::buildDirectBlocks() {
   directBlocks.clear();
+  for (DeformableRecord& record : deformables) record.inDirectBlock = false;
   const auto count = static_cast<int32_t>(deformables.size());
   std::vector<int32_t> group(deformables.size());
   for (int32_t d = 0; d < count; ++d) group[d] = d;
@@ -115,6 +110,7 @@ void World::Impl::buildDirectBlocks() {
     block.collectRows(rows);
     block.claimRows(rows);
     directBlocks.push_back(std::move(block));
+    for (int32_t member : members) deformables[member].inDirectBlock = true;
   }
   rows.colourSweptEdges(nodes.size());
   directBlocksStale = false;

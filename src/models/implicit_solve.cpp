@@ -53,19 +53,21 @@ void solveImplicitVelocities(std::span<ImplicitBody* const> bodies, std::span<Su
     sliceStart.push_back(count);
     count += body->nodeCount;
   }
-  std::vector<double>& inverseMass = work.heldChange;  // per node, until the holds are made
-  inverseMass.resize(count);
+  // Per node in the solve's order: mass (0 for a pinned node), velocity and position.
+  std::vector<double>& mass = work.mass;
   std::vector<Vec3>& velocity = work.velocity;
+  std::vector<Vec3>& position = work.position;
+  mass.resize(count);
   velocity.resize(count);
+  position.resize(count);
   for (size_t k = 0; k < bodies.size(); ++k)
     for (int32_t i = 0; i < bodies[k]->nodeCount; ++i) {
-      const int32_t node = bodies[k]->firstNode + i;
-      inverseMass[sliceStart[k] + i] = nodes.inverseMass[node];
-      velocity[sliceStart[k] + i] = nodes.inverseMass[node] > 0 ? nodes.velocity[node] : Vec3::Zero();
+      const int32_t node = bodies[k]->firstNode + i, g = sliceStart[k] + i;
+      const bool free = nodes.inverseMass[node] > 0;
+      mass[g] = free ? 1.0 / nodes.inverseMass[node] : 0.0;
+      velocity[g] = free ? nodes.velocity[node] : Vec3::Zero();
+      position[g] = nodes.position[node];
     }
-  std::vector<double>& mass = work.mass;  // per node, 0 for a pinned one
-  mass.resize(count);
-  for (int32_t i = 0; i < count; ++i) mass[i] = inverseMass[i] > 0 ? 1.0 / inverseMass[i] : 0.0;
 
   // Forces at (x, v): the elements' (with their rotations, which K keeps) and the springs'.
   std::vector<Vec3>& force = work.force;
@@ -76,22 +78,17 @@ void solveImplicitVelocities(std::span<ImplicitBody* const> bodies, std::span<Su
   blocks.clear();
   for (size_t k = 0; k < bodies.size(); ++k) {
     ImplicitBody& body = *bodies[k];
-    const std::span<const Vec3> position(nodes.position.data() + body.firstNode, body.nodeCount);
     body.rotations.resize(body.fem.tetrahedra.size(), Mat3::Identity());
-    addFemForces(body.fem, position, std::span<Vec3>(force.data() + sliceStart[k], body.nodeCount), body.firstNode,
-                 body.rotations);
+    addFemForces(body.fem, std::span<const Vec3>(position.data() + sliceStart[k], body.nodeCount),
+                 std::span<Vec3>(force.data() + sliceStart[k], body.nodeCount), body.firstNode, body.rotations);
     for (EdgeSpring spring : body.springs) {
       spring.nodeA += sliceStart[k] - body.firstNode;
       spring.nodeB += sliceStart[k] - body.firstNode;
       springs.push_back(spring);
     }
   }
-  std::vector<Vec3>& positions = work.full;  // the springs read positions in the solve's indices
-  positions.resize(count);
-  for (size_t k = 0; k < bodies.size(); ++k)
-    std::copy_n(nodes.position.begin() + bodies[k]->firstNode, bodies[k]->nodeCount, positions.begin() + sliceStart[k]);
-  for (const EdgeSpring& spring : springs) blocks.push_back(springBlocks(spring, positions));
-  addSpringForces(springs, positions, velocity, force);
+  for (const EdgeSpring& spring : springs) blocks.push_back(springBlocks(spring, position));
+  addSpringForces(springs, position, velocity, force);
 
   // −K y (stiffness only) or −(h D + h² K) y (`damped`), matrix-free.
   auto negativeStiffness = [&](const std::vector<Vec3>& y, std::vector<Vec3>& out, bool damped) {

@@ -78,7 +78,7 @@ struct MovingSupport {
 // Working memory of solveImplicitVelocities (per node of the solved bodies, in their order),
 // kept by the caller between steps so that the solve allocates nothing once grown.
 struct ImplicitSolveScratch {
-  std::vector<Vec3> velocity, force, product, b, stiffnessTimesVelocity, held, r, z, p, ap, full, x;
+  std::vector<Vec3> velocity, position, force, product, b, stiffnessTimesVelocity, held, r, z, p, ap, full, x;
   std::vector<double> mass, preconditioner, heldChange;
   std::vector<Vec3> offset;         // per node on a moving support: from its centre of mass
   std::vector<int32_t> movingOf;    // per node: its moving support's index, or −1
