@@ -158,14 +158,16 @@ std::vector<ContactReport> World::contacts() const {
     report.normal = row.normal;
     report.gap = row.gap;
     report.normalImpulse = row.stepNormalImpulse;
+    report.frictionImpulse = row.stepFrictionImpulse;
     if (row.isNodeOnRigid() && !holdReported[row.node[0]]) {
       const auto i = static_cast<size_t>(row.node[0] - body.firstNode);
       if (body.supports.holdBody[i] == row.body) {
-        report.normalImpulse += body.supports.holdImpulse[i].dot(row.normal);
+        const Vec3& hold = body.supports.holdImpulse[i];
+        report.normalImpulse += hold.dot(row.normal);
+        report.frictionImpulse += hold - hold.dot(row.normal) * row.normal;
         holdReported[row.node[0]] = true;
       }
     }
-    report.frictionImpulse = row.stepFrictionImpulse;
     reports.push_back(report);
   }
   return reports;

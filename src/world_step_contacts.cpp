@@ -55,7 +55,11 @@ void World::Impl::detectDeformableContacts(double h) {
     const DeformableRecord& body = deformables[deformableIndexOfNode(row.node[0])];
     const auto i = static_cast<size_t>(row.node[0] - body.firstNode);
     if (body.supports.holdBody.size() <= i || body.supports.holdBody[i] != row.body) continue;
-    row.supportImpulse = std::max(0.0, body.supports.holdImpulse[i].dot(row.normal)) / settings.solver.substeps;
+    // What the hold spent of its cone along the surface is not the row's to spend again.
+    const Vec3& hold = body.supports.holdImpulse[i];
+    const double pushing = hold.dot(row.normal);
+    const double spent = row.friction > 0.0 ? (hold - pushing * row.normal).norm() / row.friction : 0.0;
+    row.supportImpulse = std::max(0.0, pushing - spent) / settings.solver.substeps;
     supportAssigned[row.node[0]] = 1;
   }
   noteBodyContacts();
@@ -118,11 +122,25 @@ void World::Impl::rememberSupports() {
   const SolverContext ctx = context();
   for (const ContactRow& row : rows.contacts) {
     if (!row.isNodeOnRigid()) continue;
-    const double surfaceSpeed = row.normal.dot(rigid[row.body].velocityAt(row.offset));
-    const double gapAtEnd = row.gap + substepLength * row.normal.dot(contactRelativeVelocity(row, ctx));
+    const Vec3 surfaceVelocity = rigid[row.body].velocityAt(row.offset);
+    const double surfaceSpeed = row.normal.dot(surfaceVelocity);
+    const Vec3 relative = contactRelativeVelocity(row, ctx);
+    const double gapAtEnd = row.gap + substepLength * row.normal.dot(relative);
     DeformableRecord& body = deformables[deformableIndexOfNode(row.node[0])];
     if (rigid[row.body].inverseMass == 0.0) {
-      body.supports.add(row.node[0], row.body, row.normal, gapAtEnd, surfaceSpeed);
+      // Its friction is the implicit solve's, but not where a direct block solves the body's rows
+      // (its contacts' friction there is the block's, in the same metric).
+      if (!body.supports.add(row.node[0], row.body, row.normal, gapAtEnd, surfaceSpeed) || !body.implicitStep ||
+          body.inDirectBlock || row.friction <= 0.0)
+        continue;
+      // The step's push on the node: its hold's (in holdImpulse until the next models stage) and its row's.
+      const auto i = static_cast<size_t>(row.node[0] - body.firstNode);
+      const bool held = i < body.supports.holdBody.size() && body.supports.holdBody[i] == row.body;
+      const Vec3 hold = held ? body.supports.holdImpulse[i] : Vec3::Zero();
+      const double holdPush = hold.dot(row.normal);
+      body.supports.addFriction(row.node[0], row.friction, surfaceVelocity - surfaceSpeed * row.normal,
+                                relative - relative.dot(row.normal) * row.normal, row.stepNormalImpulse + holdPush,
+                                hold - holdPush * row.normal, held && body.supports.holdSlid[i]);
       continue;
     }
     // A dynamic body is a moving support of the swept implicit bodies that pressed on it last step.

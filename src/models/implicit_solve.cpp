@@ -18,6 +18,8 @@ constexpr double kRelativeTolerance = 1e-4;
 // jelly's box creep down a 20° slope at 4 cm/s.)
 constexpr int kMaxRounds = 4;
 constexpr double kEarlyCheckTolerance = 1e-1;
+// A sliding node's push is solved again when its c·n has changed it by more than this fraction.
+constexpr double kSlidingPushTolerance = 0.05;
 
 SpringBlocks springBlocks(const EdgeSpring& spring, std::span<const Vec3> position) {
   const Vec3 d = position[spring.nodeB] - position[spring.nodeA];
@@ -158,9 +160,19 @@ void solveImplicitVelocities(std::span<ImplicitBody* const> bodies, std::span<Su
   std::vector<Vec3>& offset = work.offset;
   offset.assign(count, Vec3::Zero());
   std::vector<int32_t>& movingOf = work.movingOf;
+  std::vector<double>& friction = work.friction;
+  std::vector<Vec3>& stuckChange = work.stuckChange;
+  std::vector<Vec3>& slidingPush = work.slidingPush;
+  std::vector<char>& stuck = work.stuck;
+  std::vector<char>& restuck = work.restuck;
   held.assign(count, Vec3::Zero());
   heldChange.assign(count, 0.0);
   movingOf.assign(count, -1);
+  friction.assign(count, 0.0);
+  stuckChange.assign(count, Vec3::Zero());
+  slidingPush.assign(count, Vec3::Zero());
+  stuck.assign(count, 0);
+  restuck.assign(count, 0);
   for (size_t k = 0; k < bodies.size(); ++k) {
     const Supports& support = *supports[k];
     for (int32_t i = 0; i < bodies[k]->nodeCount; ++i) {
@@ -178,16 +190,22 @@ void solveImplicitVelocities(std::span<ImplicitBody* const> bodies, std::span<Su
       }
       held[g] = n;
       heldChange[g] = target - n.dot(velocity[g]);
+      friction[g] = support.moves[i] ? 0.0 : support.friction[i];
+      if (friction[g] == 0.0) continue;
+      stuckChange[g] = target * n + support.slideVelocity[i] - velocity[g];
+      slidingPush[g] = support.slideFriction[i];  // sliding since last step: pushed against the slip
+      b[g] += slidingPush[g];
+      stuck[g] = slidingPush[g].isZero();
     }
   }
 
   // Filtered conjugate gradients (Baraff and Witkin 1998), Jacobi-preconditioned, from last step's
-  // Δv: S takes out the held normal components; a moving support's motion (V, Ω) comes back in
+  // Δv: S takes out the held normal components, and the whole of a stuck node's; a moving support's motion (V, Ω) comes back in
   // through them, n (n · (V + Ω × r)) at each of its held nodes, and its mass and inertia are its
   // own part of the system, with its gravity and the impulse the rest of the world gives it.
   const auto supportCount = static_cast<int32_t>(moving.size());
   auto filter = [&](std::vector<Vec3>& y) {
-    for (int32_t i = 0; i < count; ++i) y[i] -= held[i].dot(y[i]) * held[i];
+    for (int32_t i = 0; i < count; ++i) y[i] = stuck[i] ? Vec3::Zero() : Vec3(y[i] - held[i].dot(y[i]) * held[i]);
   };
   auto movesWith = [&](int32_t i) { return held[i].isZero() ? -1 : movingOf[i]; };
   std::vector<Vec3>& full = work.full;
@@ -245,16 +263,56 @@ void solveImplicitVelocities(std::span<ImplicitBody* const> bodies, std::span<Su
     filter(out);
   };
   // Let go of holds that pull (c = A Δv − b against the normal); whether any did. Leaves A x in ap.
-  auto releasePulling = [&](bool movingOnly) {
+  auto releasePulling = [&]() {
     apply(x, ap);
     bool released = false;
     for (int32_t i = 0; i < count; ++i) {
-      if (held[i].isZero() || (movingOnly && movingOf[i] < 0) || held[i].dot(ap[i] - b[i]) >= 0) continue;
+      if (held[i].isZero() || movingOf[i] < 0 || held[i].dot(ap[i] - b[i]) >= 0) continue;
       held[i].setZero();
       heldChange[i] = 0.0;
       released = true;
     }
     return released;
+  };
+  // After a round (ap = A x): let go of holds that pull; a stuck node whose c left the cone
+  // slides, a sliding one's push follows its c·n, one whose push turned its slip back sticks.
+  // Whether any changed.
+  auto updateHolds = [&]() {
+    bool changed = false;
+    for (int32_t i = 0; i < count; ++i) {
+      if (held[i].isZero()) continue;
+      const Vec3 c = ap[i] - b[i];
+      const double pushing = held[i].dot(c);
+      const Vec3 along = c - pushing * held[i];
+      const double mu = friction[i];
+      if (pushing < 0) {
+        b[i] -= slidingPush[i];
+        slidingPush[i].setZero();
+        held[i].setZero();
+        heldChange[i] = 0.0;
+        stuck[i] = 0;
+        changed = true;
+      } else if (stuck[i] && along.norm() > mu * pushing) {
+        slidingPush[i] = (mu * pushing / along.norm()) * along;
+        b[i] += slidingPush[i];
+        stuck[i] = 0;
+        changed = true;
+      } else if (!slidingPush[i].isZero() && (restuck[i] || slidingPush[i].dot(stuckChange[i] - x[i]) >= 0.0)) {
+        const Vec3 push = (mu * pushing / slidingPush[i].norm()) * slidingPush[i];  // still sliding
+        if ((push - slidingPush[i]).norm() > kSlidingPushTolerance * slidingPush[i].norm()) {
+          b[i] += push - slidingPush[i];
+          slidingPush[i] = push;
+          changed = true;
+        }
+      } else if (!slidingPush[i].isZero()) {  // its push would turn the slip back: it sticks
+        b[i] -= slidingPush[i];
+        slidingPush[i].setZero();
+        stuck[i] = 1;
+        restuck[i] = 1;
+        changed = true;
+      }
+    }
+    return changed;
   };
   int iteration = 0;
   bool converged = false;
@@ -263,7 +321,7 @@ void solveImplicitVelocities(std::span<ImplicitBody* const> bodies, std::span<Su
     for (int32_t i = 0; i < count; ++i) {
       const int32_t m = movesWith(i);
       const double normal = heldChange[i] + (m >= 0 ? held[i].dot(X[2 * m] + X[2 * m + 1].cross(offset[i])) : 0.0);
-      x[i] += (normal - held[i].dot(x[i])) * held[i];
+      x[i] = stuck[i] ? stuckChange[i] : Vec3(x[i] + (normal - held[i].dot(x[i])) * held[i]);
     }
     // Each support's block of the preconditioner: its inertia and its held nodes' diagonals.
     supportPreconditioner.assign(2 * supportCount, Mat3::Zero());
@@ -304,7 +362,8 @@ void solveImplicitVelocities(std::span<ImplicitBody* const> bodies, std::span<Su
     double rz = precondition();
     p = z;
     P = Z;
-    for (; iteration < kMaxIterations && rr > kRelativeTolerance * kRelativeTolerance * bNorm; ++iteration) {
+    for (int roundIteration = 0; roundIteration < kMaxIterations && rr > kRelativeTolerance * kRelativeTolerance * bNorm;
+         ++roundIteration, ++iteration) {
       applyReduced(p, P, ap, AP);
       double pap = 0.0;
       for (int32_t i = 0; i < count; ++i) pap += p[i].dot(ap[i]);
@@ -328,7 +387,7 @@ void solveImplicitVelocities(std::span<ImplicitBody* const> bodies, std::span<Su
       // in the last round, which converges whatever it holds).
       if (!checked && round + 1 < kMaxRounds && rr <= kEarlyCheckTolerance * kEarlyCheckTolerance * bNorm) {
         checked = true;
-        restart = releasePulling(true);
+        restart = releasePulling();
         if (restart) break;
       }
       const double next = precondition();
@@ -339,7 +398,8 @@ void solveImplicitVelocities(std::span<ImplicitBody* const> bodies, std::span<Su
     }
     converged = !restart && rr <= kRelativeTolerance * kRelativeTolerance * bNorm;
     if (restart) continue;              // holds let go early: solve again
-    if (!releasePulling(false)) break;  // and solve again if any were let go at the end
+    apply(x, ap);  // and solve again if holds changed at the end (not after the last round)
+    if (round + 1 == kMaxRounds || !updateHolds()) break;
   }
   for (size_t k = 0; k < bodies.size(); ++k) {
     ImplicitBody& body = *bodies[k];
@@ -349,7 +409,10 @@ void solveImplicitVelocities(std::span<ImplicitBody* const> bodies, std::span<Su
     support.clearHolds();  // ap is A x: x has not moved since the last release check
     for (int32_t i = 0; i < body.nodeCount; ++i) {
       const int32_t g = sliceStart[k] + i;
-      if (!held[g].isZero()) support.recordHold(i, held[g].dot(ap[g] - b[g]));
+      if (stuck[g])  // its c whole; a sliding node's, c·n and its push
+        support.recordHold(i, Vec3(ap[g] - b[g]));
+      else if (!held[g].isZero())
+        support.recordHold(i, Vec3(held[g].dot(ap[g] - b[g]) * held[g] + slidingPush[g]), !slidingPush[g].isZero());
       if (mass[g] > 0) nodes.velocity[body.firstNode + i] += x[g];
     }
     std::copy_n(x.begin() + sliceStart[k], body.nodeCount, body.previousStep.begin());

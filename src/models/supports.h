@@ -11,6 +11,11 @@
 // The support carries the hold's impulse c: it is kept per node (holdImpulse), reported as
 // part of the node's contact with that surface and of the surface's impulse from deformables,
 // and it bounds that contact's friction with the contact's own λₙ (constraints/contact.h).
+// A model that solves its velocities implicitly holds a node on a still surface along it too, at
+// the surface's velocity there, while the hold's impulse stays within the friction cone,
+// |c − (c·n) n| ≤ μ c·n, and else lets it slide pushed by the cone's edge
+// (models/implicit_solve.h): friction in the model's own metric. What c spends of its cone along
+// the surface, its contact's row does not spend again.
 //
 // Moving supports. A dynamic body resting on an implicit (FEM, mass-spring) body is a surface
 // that moves with the model's solve: its normal velocity at each held node is its own unknown,
@@ -41,6 +46,9 @@
 
 namespace tandem {
 
+// Slower than this along its surface at the end of a step, a supported node counts as still.
+constexpr double kStillAlongSupport = 1e-3;  // m/s
+
 struct Supports {
   int32_t firstNode = 0;
   // Per node of the body (local indices): unit normal (zero for none), the gap left at the end of
@@ -48,14 +56,21 @@ struct Supports {
   std::vector<Vec3> normal;
   std::vector<double> gap, speed;
   std::vector<int32_t> body;
+  // Friction held by the model (still surfaces only; zero μ for none): the contact's μ, the
+  // surface's velocity along itself at the node, and the friction impulse a node that ended last
+  // step sliding starts this one with, μ times last step's push, against that slip.
+  std::vector<double> friction;
+  std::vector<Vec3> slideVelocity, slideFriction;
   // A dynamic body among them (a plate on a jelly) moves with the model's solve
   // (models/implicit_solve.h): per node whether its surface does, and the contact point's offset
   // from that body's centre of mass.
   std::vector<char> moves;
   std::vector<Vec3> offset;
-  // This step's holds: the impulse each support gave its node (N·s), and that support's body.
+  // This step's holds: the impulse each support gave its node (N·s), that support's body, and
+  // whether the node slid on it (its friction at the cone's edge).
   std::vector<Vec3> holdImpulse;
   std::vector<int32_t> holdBody;
+  std::vector<char> holdSlid;
 
   void reset(int32_t first, int32_t count) {
     firstNode = first;
@@ -63,33 +78,59 @@ struct Supports {
     gap.assign(count, 0.0);
     speed.assign(count, 0.0);
     body.assign(count, -1);
+    friction.assign(count, 0.0);
+    slideVelocity.assign(count, Vec3::Zero());
+    slideFriction.assign(count, Vec3::Zero());
     moves.assign(count, 0);
     offset.assign(count, Vec3::Zero());
   }
   void clearHolds() {
     holdImpulse.assign(normal.size(), Vec3::Zero());
     holdBody.assign(normal.size(), -1);
+    holdSlid.assign(normal.size(), 0);
   }
-  void recordHold(size_t i, double impulse) {
-    holdImpulse[i] = impulse * normal[i];
+  void recordHold(size_t i, double impulse) { recordHold(i, Vec3(impulse * normal[i])); }
+  void recordHold(size_t i, const Vec3& impulse, bool slid = false) {
+    holdImpulse[i] = impulse;
     holdBody[i] = body[i];
+    holdSlid[i] = slid;
   }
-  // A surface by node `node` (global index); the nearest one wins.
-  void add(int32_t node, int32_t rigidBody, const Vec3& n, double gapAtEnd, double normalSpeed) {
+  // A surface by node `node` (global index); the nearest one wins. Whether the node took it.
+  bool add(int32_t node, int32_t rigidBody, const Vec3& n, double gapAtEnd, double normalSpeed) {
     const auto i = static_cast<size_t>(node - firstNode);
-    if (node < firstNode || i >= normal.size() || (!normal[i].isZero() && gap[i] <= gapAtEnd)) return;
+    if (node < firstNode || i >= normal.size() || (!normal[i].isZero() && gap[i] <= gapAtEnd)) return false;
     normal[i] = n;
     gap[i] = gapAtEnd;
     speed[i] = normalSpeed;
     body[i] = rigidBody;
+    friction[i] = 0.0;
+    slideVelocity[i].setZero();
+    slideFriction[i].setZero();
     moves[i] = 0;
+    return true;
+  }
+  // The friction μ of the still surface the node just took (`add`), the surface's velocity along
+  // itself there, and how the node ended last step on it: its slip along it, the normal impulse
+  // the surface gave it, its hold's friction impulse (zero for none) and whether that slid. A
+  // node that slipped, or whose hold slid, starts this step sliding.
+  void addFriction(int32_t node, double mu, const Vec3& alongSurface, const Vec3& slip, double push,
+                   const Vec3& holdFriction, bool slid) {
+    const auto i = static_cast<size_t>(node - firstNode);
+    friction[i] = mu;
+    slideVelocity[i] = alongSurface;
+    const double pushed = mu * std::max(push, 0.0);
+    if (slip.norm() > kStillAlongSupport)
+      slideFriction[i] = -pushed * slip.normalized();
+    else if (slid && !holdFriction.isZero())
+      slideFriction[i] = (pushed / holdFriction.norm()) * holdFriction;
+    else
+      slideFriction[i].setZero();
   }
   // A dynamic body's surface, moving with the solve, at `fromCentre` from its centre of mass.
   void addMoving(int32_t node, int32_t rigidBody, const Vec3& n, double gapAtEnd, double normalSpeed,
                  const Vec3& fromCentre) {
     const auto i = static_cast<size_t>(node - firstNode);
-    if (node < firstNode || i >= normal.size() || (!normal[i].isZero() && gap[i] <= gapAtEnd)) return;
-    add(node, rigidBody, n, gapAtEnd, normalSpeed);
+    if (!add(node, rigidBody, n, gapAtEnd, normalSpeed)) return;
     moves[i] = 1;
     offset[i] = fromCentre;
   }
