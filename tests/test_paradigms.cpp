@@ -376,9 +376,9 @@ struct BoxSlide {
   double speed;          // downhill, at the end
   double frictionRatio;  // Σ |λₜ| / Σ λₙ over the box's contacts and steps
 };
-BoxSlide boxOnTiltedJelly(double degrees, double seconds) {
+BoxSlide boxOnTiltedJelly(double degrees, double seconds, bool glued = true) {
   World world;
-  addTiltedWorldWithJelly(world, degrees, 1.0, true);
+  addTiltedWorldWithJelly(world, degrees, glued ? 1.0 : 2.0, glued);
   RigidBodyDesc box;
   box.name = "box";
   box.shape = RigidShape::box({0.08, 0.03, 0.08});
@@ -404,6 +404,18 @@ TEST(Paradigms, BoxOnFemJellyHoldsBelowTheFrictionAngleAndSlidesAboveIt) {
   const BoxSlide slide = boxOnTiltedJelly(40, 0.3);
   EXPECT_GT(slide.speed, 0.4);
   EXPECT_NEAR(slide.frictionRatio, 0.5, 0.05);
+}
+
+// Known limit: on the same jelly resting free on the ground (μ = 1 there, so the jelly holds),
+// the box should hold at 20° and slide at 40°. The jelly carries it as a moving support along
+// the normals only, and its friction is the sweep's rows, each on one node's mass: it slides at
+// 20° too, 2.06 m/s after 2 s (2026-11-27). Its friction in the jelly's solve (stuck nodes moving
+// with the box, models/implicit_solve.h) held it at 20°, but at 40° the box ploughed and the
+// jelly slid under it (docs/solver.md, twenty-fifth session).
+TEST(Paradigms, DISABLED_BoxOnFreeFemJellyHoldsBelowTheFrictionAngleAndSlidesAboveIt) {
+  EXPECT_LT(std::abs(boxOnTiltedJelly(20, 2.0, false).speed), 1e-3);
+  const double theta = 40 * kPi / 180, accel = kGravity * (std::sin(theta) - 0.5 * std::cos(theta));
+  EXPECT_NEAR(boxOnTiltedJelly(40, 1.0, false).speed, accel, 0.15 * accel);
 }
 
 // The jelly itself with μ = 1 (2 kg): static friction holds it at 30° (tan θ = 0.58), and at 50°
