@@ -56,12 +56,6 @@ void scatter(const FemTetrahedron& tet, const Mat3& forces, std::span<Vec3> out,
   }
 }
 
-// δP for δF with R held.
-Mat3 stressChange(const FemElements& elements, const Mat3& rotation, const Mat3& deltaF) {
-  const Mat3 rotated = rotation.transpose() * deltaF;
-  return rotation * stress(0.5 * (rotated + rotated.transpose()), elements.mu, elements.lambda);
-}
-
 }  // namespace
 
 FemElements makeFemElements(int32_t firstNode, std::span<const Vec3> restPositions,
@@ -103,15 +97,6 @@ void addFemForces(const FemElements& elements, std::span<const Vec3> position, s
     if (!rotations.empty()) rotations[t] = r;
     const Mat3 strain = 0.5 * (r.transpose() * f + f.transpose() * r) - Mat3::Identity();
     scatter(tet, nodeForces(tet, r * stress(strain, elements.mu, elements.lambda)), force, offset);
-  }
-}
-
-void addFemStiffnessProduct(const FemElements& elements, std::span<const Mat3> rotations, std::span<const Vec3> dx,
-                            std::span<Vec3> out, int32_t offset) {
-  for (size_t t = 0; t < elements.tetrahedra.size(); ++t) {
-    const FemTetrahedron& tet = elements.tetrahedra[t];
-    const Mat3 deltaF = edgeMatrix(dx, tet.node, offset) * tet.restInverse;
-    scatter(tet, nodeForces(tet, stressChange(elements, rotations[t], deltaF)), out, offset);
   }
 }
 

