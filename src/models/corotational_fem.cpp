@@ -110,12 +110,15 @@ void addFemStiffnessBlocks(const FemElements& elements, std::span<const Mat3> ro
     for (int k = 0; k < 3; ++k) g[k + 1] = tet.restInverse.row(k).transpose();
     g[0] = -(g[1] + g[2] + g[3]);
     for (int a = 0; a < 4; ++a) turned[a] = rotations[t] * g[a];
-    const double scale = h * h * tet.volume;  // −h² K_ab = h² V (…)
+    const double scale = h * h * tet.volume;  // −h² K_ab = h² V (…), and K_ba = K_abᵀ
+    const double mu = scale * elements.mu, lambda = scale * elements.lambda;
     for (int a = 0; a < 4; ++a)
-      for (int b = 0; b < 4; ++b) {
-        const Mat3 k = elements.mu * g[a].dot(g[b]) * Mat3::Identity() + elements.mu * turned[b] * turned[a].transpose() +
-                       elements.lambda * turned[a] * turned[b].transpose();
-        out[first + static_cast<size_t>(elements.pairOfBlock[t][a * 4 + b])].k += scale * k;
+      for (int b = a; b < 4; ++b) {
+        const Mat3 outer = turned[a] * turned[b].transpose();
+        Mat3 k = mu * outer.transpose() + lambda * outer;
+        k.diagonal().array() += mu * g[a].dot(g[b]);
+        out[first + static_cast<size_t>(elements.pairOfBlock[t][a * 4 + b])].k += k;
+        if (b != a) out[first + static_cast<size_t>(elements.pairOfBlock[t][b * 4 + a])].k += k.transpose();
       }
   }
 }
