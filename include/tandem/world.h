@@ -299,7 +299,8 @@ struct DeformableDesc {
 };
 
 // A contact of a deformable surface in the last step. Impulses are on the deformable (side A);
-// the other side got the opposite.
+// the other side got the opposite. They include what the deformable's model gave the node
+// holding it on its support (normal and, for FEM and spring bodies on still surfaces, friction).
 struct ContactReport {
   DeformableId deformable;
   std::optional<RigidBodyId> rigid;          // side B: a rigid body, or
