@@ -186,7 +186,7 @@ void solveImplicitVelocities(std::span<ImplicitBody* const> bodies, std::span<Su
       }
       held[g] = n;
       heldChange[g] = target - n.dot(velocity[g]);
-      friction[g] = support.moves[i] ? 0.0 : support.friction[i];
+      friction[g] = support.friction[i];  // still supports only (models/supports.h)
       if (friction[g] == 0.0) continue;
       stuckChange[g] = target * n + support.slideVelocity[i] - velocity[g];
       slidingPush[g] = support.slideFriction[i];  // sliding since last step: pushed against the slip
@@ -196,9 +196,10 @@ void solveImplicitVelocities(std::span<ImplicitBody* const> bodies, std::span<Su
   }
 
   // Filtered conjugate gradients (Baraff and Witkin 1998), Jacobi-preconditioned, from last step's
-  // Δv: S takes out the held normal components, and the whole of a stuck node's; a moving support's motion (V, Ω) comes back in
-  // through them, n (n · (V + Ω × r)) at each of its held nodes, and its mass and inertia are its
-  // own part of the system, with its gravity and the impulse the rest of the world gives it.
+  // Δv: S takes out the held normal components, and the whole of a stuck node's; a moving
+  // support's motion (V, Ω) comes back in through them, n (n · (V + Ω × r)) at each of its held
+  // nodes, and its mass and inertia are its own part of the system, with its gravity and the
+  // impulse the rest of the world gives it.
   const auto supportCount = static_cast<int32_t>(moving.size());
   auto filter = [&](std::vector<Vec3>& y) {
     for (int32_t i = 0; i < count; ++i) y[i] = stuck[i] ? Vec3::Zero() : Vec3(y[i] - held[i].dot(y[i]) * held[i]);
@@ -258,7 +259,8 @@ void solveImplicitVelocities(std::span<ImplicitBody* const> bodies, std::span<Su
     addSupportInertia(Y, 1.0, Out);
     filter(out);
   };
-  // Let go of holds that pull (c = A Δv − b against the normal); whether any did. Leaves A x in ap.
+  // Let go of moving supports' holds that pull (c = A Δv − b against the normal); whether any
+  // did. Leaves A x in ap.
   auto releasePulling = [&]() {
     apply(x, ap);
     bool released = false;

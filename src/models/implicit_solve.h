@@ -26,12 +26,13 @@
 // the cone, |c − (c·n) n| ≤ μ c·n, static friction holds the whole body in this solve's metric;
 // once outside, the node slides, pushed along the surface by the cone's edge, μ (c·n) in the
 // direction of c's tangential part, a known load added to b, and the solve is repeated. A node
-// that ended last step sliding starts sliding, pushed against that slip by μ times last step's
-// push; if its push turns the slip back, it sticks (once per step). The push is part of the
-// support's impulse. Friction rows alone, each on one node's mass after this solve, could not
-// hold an elastic body: a jelly with μ = 1 slid down a 30° slope at 2.7 m/s² (the rows stop its
-// bottom layer in each step, the next solve drags it along with the rest), and at 6.0 m/s² down
-// a 50° one instead of 1.2.
+// that ended last step sliding starts sliding, pushed by μ times last step's push against its
+// slip (or along its last friction, when it slipped less than 1 mm/s); if its push turns the slip
+// back, it sticks (once per step). At most four rounds: a step that runs out of them keeps the
+// last round's holds. The push is part of the support's impulse. Friction rows alone, each on
+// one node's mass after this solve, could not hold an elastic body: a jelly with μ = 1 slid down
+// a 30° slope at 2.7 m/s² (the rows stop its bottom layer in each step, the next solve drags it
+// along with the rest), and at 6.0 m/s² down a 50° one instead of 1.2.
 //
 // A moving support (a dynamic body resting on the body, models/supports.h) adds its velocity
 // change (ΔV, ΔΩ) to the unknowns: its held nodes take n (n · (ΔV + ΔΩ × r)) on top of their

@@ -58,7 +58,7 @@ struct Supports {
   std::vector<int32_t> body;
   // Friction held by the model (still surfaces only; zero μ for none): the contact's μ, the
   // surface's velocity along itself at the node, and the friction impulse a node that ended last
-  // step sliding starts this one with, μ times last step's push, against that slip.
+  // step sliding starts this one with (zero for one that starts stuck; see addFriction).
   std::vector<double> friction;
   std::vector<Vec3> slideVelocity, slideFriction;
   // A dynamic body among them (a plate on a jelly) moves with the model's solve
