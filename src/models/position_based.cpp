@@ -1,9 +1,12 @@
 #include "models/position_based.h"
 
+#include "solver/graph_colouring.h"
+
 #include <Eigen/SVD>
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 namespace tandem {
 namespace {
@@ -37,6 +40,18 @@ PositionBasedRest positionBasedRest(std::span<const Vec3> restPositions, std::sp
   for (const auto& e : edges) rest.edgeLength.push_back((x[e[1]] - x[e[0]]).norm());
   rest.sixVolume.reserve(tetrahedra.size());
   for (const auto& t : tetrahedra) rest.sixVolume.push_back((x[t[1]] - x[t[0]]).dot((x[t[2]] - x[t[0]]).cross(x[t[3]] - x[t[0]])));
+  ColouringScratch scratch;
+  auto byColour = [&](const auto& rows, std::vector<int32_t>& order) {
+    const std::vector<std::decay_t<decltype(rows[0])>> copied(rows.begin(), rows.end());
+    colourIndices(
+        copied, [](const auto&) { return true; }, x.size(),
+        [](const auto& row, auto add) {
+          for (int32_t node : row) add(static_cast<size_t>(node));
+        },
+        order, scratch);
+  };
+  byColour(edges, rest.edgeOrder);
+  byColour(tetrahedra, rest.tetrahedronOrder);
   return rest;
 }
 
@@ -65,7 +80,7 @@ void positionBasedGoals(const PositionBasedBody& body, std::span<const Vec3> pre
   const std::vector<double>& restLength = body.rest->edgeLength;
   const std::vector<double>& restVolume = body.rest->sixVolume;
   for (int iteration = 0; iteration < body.iterations; ++iteration) {
-    for (size_t i = 0; i < body.edges.size(); ++i) {
+    for (const int32_t i : body.rest->edgeOrder) {
       const auto& e = body.edges[i];
       const double wi = inverseMass[e[0]], wj = inverseMass[e[1]];
       if (wi + wj == 0.0) continue;
@@ -76,7 +91,7 @@ void positionBasedGoals(const PositionBasedBody& body, std::span<const Vec3> pre
       x[e[0]] += wi * correction;
       x[e[1]] -= wj * correction;
     }
-    for (size_t i = 0; i < body.tetrahedra.size(); ++i) {
+    for (const int32_t i : body.rest->tetrahedronOrder) {
       // C = 6V − 6V⁰ with 6V = (x₁ − x₀)·((x₂ − x₀) × (x₃ − x₀)).
       const auto& t = body.tetrahedra[i];
       const Vec3 e1 = x[t[1]] - x[t[0]], e2 = x[t[2]] - x[t[0]], e3 = x[t[3]] - x[t[0]];
