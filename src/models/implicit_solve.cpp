@@ -94,15 +94,22 @@ void solveImplicitVelocities(std::span<ImplicitBody* const> bodies, std::span<Su
 
   // The elements' −K by node pair, with this step's rotations.
   for (ImplicitBody* body : bodies) {
-    body->stiffnessBlocks.clear();
-    addFemStiffnessBlocks(body->fem, body->rotations, 1.0, body->stiffnessBlocks);
+    std::vector<NodePairStiffness>& pairs = body->stiffnessBlocks;
+    pairs.clear();
+    addFemStiffnessBlocks(body->fem, body->rotations, 1.0, pairs);
+    // −K is symmetric: each pair once (a ≤ b), its transpose applied with it.
+    pairs.erase(std::remove_if(pairs.begin(), pairs.end(), [](const NodePairStiffness& p) { return p.nodeA > p.nodeB; }),
+                pairs.end());
   }
   // −K y (stiffness only) or −(h D + h² K) y (`damped`).
   auto negativeStiffness = [&](const std::vector<Vec3>& y, std::vector<Vec3>& out, bool damped) {
     out.assign(count, Vec3::Zero());
     for (size_t k = 0; k < bodies.size(); ++k) {
       const int32_t shift = sliceStart[k] - bodies[k]->firstNode;
-      for (const NodePairStiffness& pair : bodies[k]->stiffnessBlocks) out[pair.nodeA + shift] += pair.k * y[pair.nodeB + shift];
+      for (const NodePairStiffness& pair : bodies[k]->stiffnessBlocks) {
+        out[pair.nodeA + shift] += pair.k * y[pair.nodeB + shift];
+        if (pair.nodeA != pair.nodeB) out[pair.nodeB + shift] += pair.k.transpose() * y[pair.nodeA + shift];
+      }
     }
     if (damped)
       for (Vec3& o : out) o *= h * h;

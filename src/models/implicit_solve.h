@@ -67,8 +67,8 @@ struct ImplicitBody {
   std::vector<Vec3> previousStep;   // last step's Δv, the solve's starting guess (local indices)
   std::vector<Mat3> rotations;      // of each element at this step's positions, from the solve
   // The elements' −K by node pair (global indices) with this step's rotations, made once per
-  // solve: a product by it is a 3 × 3 block per pair where the elements' own took four 3 × 3
-  // products per element.
+  // solve, each pair once (a ≤ b; (b, a) is its transpose): a product by it is a block and its
+  // transpose per pair where the elements' own took four 3 × 3 products per element.
   std::vector<NodePairStiffness> stiffnessBlocks;
   int lastIterations = 0;      // conjugate-gradient iterations of the last step
   bool lastConverged = true;   // whether they met the tolerance within their limit
