@@ -266,6 +266,17 @@ void solveImplicitVelocities(std::span<ImplicitBody* const> bodies, std::span<Su
     addSupportInertia(Y, 1.0, Out);
     filter(out);
   };
+  // A sliding node's push, a load in b (zero: none).
+  auto setPush = [&](int32_t i, const Vec3& push) {
+    b[i] += push - slidingPush[i];
+    slidingPush[i] = push;
+  };
+  auto release = [&](int32_t i) {
+    setPush(i, Vec3::Zero());
+    held[i].setZero();
+    heldChange[i] = 0.0;
+    stuck[i] = 0;
+  };
   // Let go of moving supports' holds that pull (c = A Δv − b against the normal); whether any
   // did. Leaves A x in ap.
   auto releasePulling = [&]() {
@@ -273,8 +284,7 @@ void solveImplicitVelocities(std::span<ImplicitBody* const> bodies, std::span<Su
     bool released = false;
     for (int32_t i = 0; i < count; ++i) {
       if (held[i].isZero() || movingOf[i] < 0 || held[i].dot(ap[i] - b[i]) >= 0) continue;
-      held[i].setZero();
-      heldChange[i] = 0.0;
+      release(i);
       released = true;
     }
     return released;
@@ -291,27 +301,20 @@ void solveImplicitVelocities(std::span<ImplicitBody* const> bodies, std::span<Su
       const Vec3 along = c - pushing * held[i];
       const double mu = friction[i];
       if (pushing < 0) {
-        b[i] -= slidingPush[i];
-        slidingPush[i].setZero();
-        held[i].setZero();
-        heldChange[i] = 0.0;
-        stuck[i] = 0;
+        release(i);
         changed = true;
       } else if (stuck[i] && along.norm() > mu * pushing) {
-        slidingPush[i] = (mu * pushing / along.norm()) * along;
-        b[i] += slidingPush[i];
+        setPush(i, (mu * pushing / along.norm()) * along);
         stuck[i] = 0;
         changed = true;
       } else if (!slidingPush[i].isZero() && (restuck[i] || slidingPush[i].dot(stuckChange[i] - x[i]) >= 0.0)) {
         const Vec3 push = (mu * pushing / slidingPush[i].norm()) * slidingPush[i];  // still sliding
         if ((push - slidingPush[i]).norm() > kSlidingPushTolerance * slidingPush[i].norm()) {
-          b[i] += push - slidingPush[i];
-          slidingPush[i] = push;
+          setPush(i, push);
           changed = true;
         }
       } else if (!slidingPush[i].isZero()) {  // its push would turn the slip back: it sticks
-        b[i] -= slidingPush[i];
-        slidingPush[i].setZero();
+        setPush(i, Vec3::Zero());
         stuck[i] = 1;
         restuck[i] = 1;
         changed = true;
