@@ -1,12 +1,13 @@
 // World: snapshots of the whole state, and restoring them.
 //
 // Tandem's side is copied whole: nodes, deformable records (models' state, supports), springs,
-// every row with its warm-start impulse, last step's contact impulses by feature, the rigid
-// bodies' state as the rows saw it, ids' slots, settings, time and the last report. The direct
-// blocks (factorisations) are not copied: they are rebuilt from the rows at the next step, as
-// they would be after any edit, which gives the same factors. Bullet's side is
-// bullet_snapshot.cpp's. A member added to World::Impl that the next step reads must be copied
-// here too (the record-and-compare test in tests/test_snapshot.cpp finds one left out).
+// every row with its warm-start impulse, the swept edges' coarse levels (kept from step to step
+// while they fit), last step's contact impulses by feature, the rigid bodies' state as the rows
+// saw it, ids' slots, settings, time and the last report. The direct blocks (factorisations) are
+// not copied: they are rebuilt from the rows at the next step, as they would be after any edit,
+// which gives the same factors. Bullet's side is bullet_snapshot.cpp's. A member added to
+// World::Impl that the next step reads must be copied here too (the record-and-compare test in
+// tests/test_snapshot.cpp finds one left out).
 #include "world_impl.h"
 
 #include "bullet/bullet_world_impl.h"
@@ -23,6 +24,7 @@ struct WorldSnapshot::Data {
   std::vector<DeformableRecord> deformables;
   std::vector<EdgeSpring> springs;
   ConstraintRows rows;
+  SweptEdgeCoarseLevel sheetProjectionCoarse;  // kept from step to step while it fits
   std::vector<std::pair<uint64_t, ContactImpulse>> previousContacts;
   std::vector<RigidSolverState> rigid;
   std::vector<MovingSupportRecord> movingSupportRecords;
@@ -59,6 +61,7 @@ WorldSnapshot World::snapshot() const {
   data->deformables = w.deformables;
   data->springs = w.springs;
   data->rows = w.rows;
+  data->sheetProjectionCoarse = w.strainScratch.together.coarse;
   data->previousContacts = w.previousContacts;
   data->rigid = w.rigid;
   data->movingSupportRecords = w.movingSupportRecords;
@@ -90,6 +93,7 @@ Status World::restore(const WorldSnapshot& snapshot) {
   w.deformables = data->deformables;
   w.springs = data->springs;
   w.rows = data->rows;
+  w.strainScratch.together.coarse = data->sheetProjectionCoarse;
   w.previousContacts = data->previousContacts;
   w.rigid = data->rigid;
   w.movingSupportRecords = data->movingSupportRecords;

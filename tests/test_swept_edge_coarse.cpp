@@ -94,7 +94,7 @@ TEST(SweptEdgeCoarse, MatrixIsTheGalerkinProductOfTheEdgeSystem) {
     p.block<1, 3>(e, 3 * coarse.aggregateOfEdge[e]) = coarse.basisOfEdge[e].transpose();
   }
   const Eigen::MatrixXd galerkin = p.transpose() * a * p;
-  const Eigen::SparseMatrix<double> whole = coarse.matrix.selfadjointView<Eigen::Lower>();  // its lower triangle stored
+  const Eigen::SparseMatrix<double> whole = coarse.factor.matrix.selfadjointView<Eigen::Lower>();  // its lower triangle stored
   const Eigen::MatrixXd built(whole);
   const double largest = galerkin.diagonal().maxCoeff();
   for (Eigen::Index i = 0; i < size; ++i)

@@ -252,9 +252,10 @@ struct SheetContact {
 // (`bodies`, translation only): a ball dropped on a taut sheet is held by the sheet's edges at
 // once, the dent and the ball's place found together (without them the projection flattened the
 // dent into the body, or left the body on the far side, and the passes' velocity update threw
-// it; docs/solver.md). The coarse level is built for the edges' directions in the stage's first
-// projection (`coarseBuilt` false; it is set) and kept for the others (a preconditioner need not
-// be exact), unless the edges have changed; the contact rows have no coarse part. Nothing is done
+// it; docs/solver.md). The coarse level is built again for the edges' directions in the stage's
+// first projection (`coarseBuilt` false; it is set) if it no longer fits them
+// (sweptEdgeCoarseFits: it is kept from step to step while it does) and kept for the stage's
+// other projections (a preconditioner need not be exact), unless the edges have changed; the contact rows have no coarse part. Nothing is done
 // unless some edge is past a bound by more than the passes' convergence (kStrainConverged of its
 // length), or some contact closed past its gap by twice the slop: at rest one pass is all a
 // draped cloth needs, and building the coarse level for it was a quarter of the paper's cloth's

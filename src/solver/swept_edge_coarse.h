@@ -61,30 +61,47 @@ struct SweptEdgeCoarseLevel {
   std::vector<int32_t> slotAggregate, slotNode;
   std::vector<std::array<int32_t, 2>> slotOfEdge;
   std::vector<std::array<int32_t, 2>> slotPairs;  // slots at the same node, each pair once (s ≤ t)
-  // Per (sub)step
+  // Per build (kept while it fits the edges: sweptEdgeCoarseFits)
   std::vector<Mat3> spread;                // per patch: Σ n nᵀ over its edges
   std::vector<std::array<Vec3, 2>> frame;  // per patch: t₁, t₂
   std::vector<Vec3> basisOfEdge;           // q(nₑ) in its patch's frame
   std::vector<Mat3> slotImage;             // G = Jᵀ P at the slot's node, for the slot's patch
   std::vector<Eigen::Triplet<double>> entries;  // A_c's, its blocks in the slot pairs' order
   SparseAssembly assembly{SparseAssembly::Part::LowerTriangle};  // of entries into matrix
-  Eigen::SparseMatrix<double> matrix;                             // A_c, its lower triangle
-  // Its factorisation: working memory, which a copy (a world's snapshot) starts afresh.
+  // A_c (its lower triangle) and its factorisation. A copy (a world's snapshot) factorises the
+  // copied matrix again, which gives the same factors: the level is kept from step to step
+  // (sweptEdgeCoarseFits), so a restored world must go on with the one the original had.
   struct Factor {
+    Eigen::SparseMatrix<double> matrix;
     std::unique_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> ldlt =
         std::make_unique<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>();
     bool analysed = false;
-    bool ready = false;  // factorised, for the edges' current directions
+    bool ready = false;  // factorised
+    void factorise(bool newPattern) {
+      if (newPattern || !analysed) {
+        ldlt->analyzePattern(matrix);
+        analysed = true;
+      }
+      ldlt->factorize(matrix);
+      ready = ldlt->info() == Eigen::Success;
+    }
     Factor() = default;
-    Factor(const Factor&) : Factor() {}
-    Factor& operator=(const Factor&) {
-      *this = Factor();
+    Factor(const Factor& other) : matrix(other.matrix) {
+      if (other.ready) factorise(true);
+    }
+    Factor& operator=(const Factor& other) {
+      if (this != &other) *this = Factor(other);
       return *this;
     }
     Factor(Factor&&) = default;
     Factor& operator=(Factor&&) = default;
   } factor;
   Eigen::VectorXd rhs, solution;
+  // What the factorisation was built for: each edge's direction, and each slot node's weight and
+  // held direction (sweptEdgeCoarseFits).
+  std::vector<Vec3> builtDirection;
+  std::vector<double> builtWeight;
+  std::vector<Vec3> builtHeldAlong;
 };
 
 namespace swept_edge_coarse_detail {
@@ -239,23 +256,52 @@ inline void buildSweptEdgeCoarse(const std::vector<Vec3>& direction, std::span<c
       }
   }
   for (int32_t k = 0; k < size; ++k) c.entries.emplace_back(k, k, 0.0);  // every diagonal entry present
-  const bool newPattern = c.assembly.assemble(c.entries, size, size, c.matrix);
+  Eigen::SparseMatrix<double>& matrix = c.factor.matrix;
+  const bool newPattern = c.assembly.assemble(c.entries, size, size, matrix);
   // A column no edge of its patch uses (a sheet with two edge directions has no shear) is kept
   // apart with a unit diagonal; every other gets a part in 10⁹ of the largest as regularisation.
   double largest = 0.0;
-  for (int32_t k = 0; k < size; ++k) largest = std::max(largest, c.matrix.coeff(k, k));
+  for (int32_t k = 0; k < size; ++k) largest = std::max(largest, matrix.coeff(k, k));
   for (int32_t k = 0; k < size; ++k) {
-    double& diagonal = c.matrix.coeffRef(k, k);
+    double& diagonal = matrix.coeffRef(k, k);
     diagonal = diagonal > 1e-12 * largest ? diagonal + 1e-9 * largest : 1.0;
   }
-  if (newPattern || !c.factor.analysed) {
-    c.factor.ldlt->analyzePattern(c.matrix);
-    c.factor.analysed = true;
-  }
-  c.factor.ldlt->factorize(c.matrix);
-  c.factor.ready = c.factor.ldlt->info() == Eigen::Success;
+  c.factor.factorise(newPattern);
   c.rhs.resize(size);
   c.solution.resize(size);
+  c.builtDirection = direction;
+  c.builtWeight.resize(c.slotNode.size());
+  c.builtHeldAlong.resize(c.slotNode.size());
+  for (size_t k = 0; k < c.slotNode.size(); ++k) {
+    const auto node = static_cast<size_t>(c.slotNode[k]);
+    c.builtWeight[k] = inverseMass[node];
+    c.builtHeldAlong[k] = node < heldAlong.size() ? heldAlong[node] : Vec3::Zero();
+  }
+}
+
+// How far (|n − n₀|, about the angle in radians) the edges may turn in the root mean square, or
+// a node's held direction change, before the coarse level built for n₀ is built again. It is a preconditioner: a level
+// a few degrees out of date slows the conjugate gradients a little and changes nothing they
+// converge to, and at rest a sheet's edges turn by far less from step to step, so the level
+// (its patches' planes, the Galerkin product and its factorisation: a tenth of the paper's
+// cloth's step when built in every step) is kept. Measured: docs/solver.md, twenty-sixth session.
+inline constexpr double kSweptEdgeCoarseKeptTurn = 0.05;
+
+// Whether the level, factorised, was built for these edges' directions (their root mean square
+// turn since), weights (exactly) and held directions within kSweptEdgeCoarseKeptTurn.
+inline bool sweptEdgeCoarseFits(const std::vector<Vec3>& direction, std::span<const double> inverseMass,
+                                std::span<const Vec3> heldAlong, const SweptEdgeCoarseLevel& c) {
+  if (!c.factor.ready || direction.size() != c.builtDirection.size()) return false;
+  constexpr double turn2 = kSweptEdgeCoarseKeptTurn * kSweptEdgeCoarseKeptTurn;
+  double turned2 = 0.0;
+  for (size_t e = 0; e < direction.size(); ++e) turned2 += (direction[e] - c.builtDirection[e]).squaredNorm();
+  if (turned2 > turn2 * static_cast<double>(direction.size())) return false;
+  for (size_t k = 0; k < c.slotNode.size(); ++k) {
+    const auto node = static_cast<size_t>(c.slotNode[k]);
+    const Vec3 held = node < heldAlong.size() ? heldAlong[node] : Vec3::Zero();
+    if (inverseMass[node] != c.builtWeight[k] || (held - c.builtHeldAlong[k]).squaredNorm() > turn2) return false;
+  }
+  return true;
 }
 
 // z += P A_c⁻¹ Pᵀ r, over the edges the level was built for (the leading rows of r and z; rows

@@ -144,7 +144,8 @@ inline void preconditionSweptEdges(SweptEdgeSolveScratch& s, const std::vector<d
 }
 
 // The coarse level for s.edges: its patches made when the edges change, its matrix for their
-// current directions and the nodes' weights `inverseMass`.
+// current directions and the nodes' weights `inverseMass`, kept while it still fits them
+// (sweptEdgeCoarseFits).
 inline void prepareSweptEdgeCoarse(SweptEdgeSolveScratch& s, std::span<const double> inverseMass,
                                    std::span<const Vec3> heldAlong = {}) {
   const size_t n = s.edges.size();
@@ -155,7 +156,8 @@ inline void prepareSweptEdgeCoarse(SweptEdgeSolveScratch& s, std::span<const dou
     s.directions[i] = s.edges[i].n;
   }
   if (s.edgeNodes != s.coarse.edgeNodes) aggregateSweptEdges(s.edgeNodes, s.coarse);
-  buildSweptEdgeCoarse(s.directions, inverseMass, heldAlong, s.coarse);
+  if (!sweptEdgeCoarseFits(s.directions, inverseMass, heldAlong, s.coarse))
+    buildSweptEdgeCoarse(s.directions, inverseMass, heldAlong, s.coarse);
 }
 
 // A Δλ = r for the edges s.edges (A = J W Jᵀ) from Δλ = 0 into s.impulse, r given in
