@@ -646,6 +646,51 @@ TEST(SpatialHash, AWideLookupVisitsTheEntriesOnceInsteadOfEveryCell) {
   }
 }
 
+// A point's distance to a triangle mesh, found through the grid with each triangle's plane as a
+// lower bound that skips triangles, is the nearest of every triangle's (brute force): on a bowl
+// whose faces tilt every way, at random points in and around it.
+TEST(SpatialHash, MeshDistanceThroughTheGridIsTheNearestTriangle) {
+  geometry::CollisionShape collision;
+  RigidShape& bowl = collision.shape;
+  bowl.type = ShapeType::TriangleMesh;
+  const int rings = 6, sectors = 12;
+  bowl.points.emplace_back(0.0, 0.0, 0.0);
+  for (int r = 1; r <= rings; ++r)
+    for (int k = 0; k < sectors; ++k) {
+      const double radius = 0.08 * r, angle = 2 * std::numbers::pi * k / sectors;
+      bowl.points.emplace_back(radius * std::cos(angle), 0.3 * radius * radius, radius * std::sin(angle));
+    }
+  auto point = [&](int r, int k) { return r == 0 ? 0 : 1 + (r - 1) * sectors + (k % sectors); };
+  for (int r = 0; r < rings; ++r)
+    for (int k = 0; k < sectors; ++k) {
+      if (r > 0) bowl.triangles.push_back({point(r, k), point(r + 1, k), point(r, k + 1)});
+      bowl.triangles.push_back({point(r, k + 1), point(r + 1, k), point(r + 1, k + 1)});
+    }
+  collision.grid.build(bowl.points, bowl.triangles);
+  uint64_t state = 12345;
+  auto uniform = [&](double low, double high) {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return low + (high - low) * static_cast<double>(state >> 11) / static_cast<double>(uint64_t{1} << 53);
+  };
+  const double reach = 0.05;
+  int near = 0;
+  for (int query = 0; query < 2000; ++query) {
+    const Vec3 q(uniform(-0.55, 0.55), uniform(-0.05, 0.15), uniform(-0.55, 0.55));
+    double nearest = INFINITY;
+    for (const auto& t : bowl.triangles) {
+      const Vec3 &a = bowl.points[t[0]], &b = bowl.points[t[1]], &c = bowl.points[t[2]];
+      const auto w = geometry::closestOnTriangle(q, a, b, c);
+      nearest = std::min(nearest, (q - (w[0] * a + w[1] * b + w[2] * c)).norm());
+    }
+    if (nearest >= reach) continue;  // beyond the lookup's reach the answer may be any triangle's or none
+    ++near;
+    const geometry::ShapeDistance found = geometry::distanceToShape(collision, q, reach);
+    ASSERT_NEAR(found.distance, nearest, 1e-12) << "query " << query;
+    ASSERT_NEAR((q - found.surfacePoint).norm(), nearest, 1e-12) << "query " << query;
+  }
+  EXPECT_GT(near, 300);  // enough of them near the bowl to mean something
+}
+
 TEST(Contact, ClothsMeetingHeadOnFastDoNotPassAndKeepMomentum) {
   // Two sheets 2 cm apart closing at 40 m/s (0.67 m a step) with one iteration: the rows
   // cannot stop them in time, the impact zones must.

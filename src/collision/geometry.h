@@ -210,9 +210,20 @@ struct SpatialHash {
   }
 };
 
-// A static triangle mesh's triangles in a spatial hash (body frame), built once.
+// A static triangle mesh's triangles in a spatial hash (body frame), built once, with each
+// triangle's plane (unit normal n and n·a; zero for a degenerate triangle): a point's distance to
+// the plane is a lower bound on its distance to the triangle, which lets a query skip the
+// triangles that cannot be nearer than the nearest found.
 struct TriangleGrid : SpatialHash {
+  std::vector<Eigen::Vector4d> planes;
   void build(const std::vector<Vec3>& vertices, const std::vector<std::array<int32_t, 3>>& triangles) {
+    planes.clear();
+    for (const auto& t : triangles) {
+      const Vec3 normal = (vertices[t[1]] - vertices[t[0]]).cross(vertices[t[2]] - vertices[t[0]]);
+      const double length = normal.norm();
+      const Vec3 n = length > 0.0 ? Vec3(normal / length) : Vec3::Zero();
+      planes.emplace_back(n.x(), n.y(), n.z(), n.dot(vertices[t[0]]));
+    }
     double longest = 1e-3;
     for (const auto& t : triangles)
       for (int k = 0; k < 3; ++k) longest = std::max(longest, (vertices[t[(k + 1) % 3]] - vertices[t[k]]).norm());
@@ -271,6 +282,8 @@ inline ShapeDistance distanceToShape(const CollisionShape& collision, const Vec3
   if (shape.type == ShapeType::TriangleMesh) {
     ShapeDistance best{INFINITY, Vec3::UnitY(), q};
     collision.grid.visit(q, reach, [&](int32_t i) {
+      const Eigen::Vector4d& plane = collision.grid.planes[static_cast<size_t>(i)];
+      if (std::abs(plane.head<3>().dot(q) - plane[3]) >= best.distance) return;  // cannot be nearer
       const auto& t = shape.triangles[i];
       const Vec3 &a = shape.points[t[0]], &b = shape.points[t[1]], &c = shape.points[t[2]];
       const std::array<double, 3> w = closestOnTriangle(q, a, b, c);
