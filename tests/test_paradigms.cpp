@@ -141,7 +141,11 @@ TEST(Paradigms, FemStiffnessBlocksAreTheStiffnessProduct) {
     std::vector<Vec3> dx(mesh.positions.size()), fromBlocks(mesh.positions.size(), Vec3::Zero());
     for (Vec3& d : dx) d = Vec3(jostle(rng), jostle(rng), jostle(rng));
     const std::vector<Vec3> product = stiffnessProduct(elements, rotations, dx);
-    for (const NodePairStiffness& block : blocks) fromBlocks[block.nodeA] += block.k * dx[block.nodeB];
+    for (const NodePairStiffness& block : blocks) {  // each pair once (a ≤ b), K_ba = K_abᵀ
+      ASSERT_LE(block.nodeA, block.nodeB);
+      fromBlocks[block.nodeA] += block.k * dx[block.nodeB];
+      if (block.nodeA != block.nodeB) fromBlocks[block.nodeB] += block.k.transpose() * dx[block.nodeA];
+    }
     double largest = 0.0;
     for (const Vec3& p : product) largest = std::max(largest, p.norm());
     ASSERT_GT(largest, 0.0);

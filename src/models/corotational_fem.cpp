@@ -3,6 +3,7 @@
 #include <Eigen/LU>
 #include <Eigen/SVD>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <unordered_map>
@@ -76,13 +77,15 @@ FemElements makeFemElements(int32_t firstNode, std::span<const Vec3> restPositio
   pairIndex.reserve(4 * elements.tetrahedra.size());
   elements.pairOfBlock.reserve(elements.tetrahedra.size());
   for (const FemTetrahedron& tet : elements.tetrahedra) {
-    std::array<int32_t, 16>& slots = elements.pairOfBlock.emplace_back();
+    std::array<int32_t, 10>& slots = elements.pairOfBlock.emplace_back();
+    int slot = 0;
     for (int a = 0; a < 4; ++a)
-      for (int b = 0; b < 4; ++b) {
-        const uint64_t key = (uint64_t{static_cast<uint32_t>(tet.node[a])} << 32) | static_cast<uint32_t>(tet.node[b]);
+      for (int b = a; b < 4; ++b) {
+        const int32_t low = std::min(tet.node[a], tet.node[b]), high = std::max(tet.node[a], tet.node[b]);
+        const uint64_t key = (uint64_t{static_cast<uint32_t>(low)} << 32) | static_cast<uint32_t>(high);
         const auto [it, added] = pairIndex.try_emplace(key, static_cast<int32_t>(elements.pairs.size()));
-        if (added) elements.pairs.push_back({tet.node[a], tet.node[b]});
-        slots[a * 4 + b] = it->second;
+        if (added) elements.pairs.push_back({low, high});
+        slots[slot++] = it->second;
       }
   }
   return elements;
@@ -112,13 +115,17 @@ void addFemStiffnessBlocks(const FemElements& elements, std::span<const Mat3> ro
     for (int a = 0; a < 4; ++a) turned[a] = rotations[t] * g[a];
     const double scale = h * h * tet.volume;  // −h² K_ab = h² V (…), and K_ba = K_abᵀ
     const double mu = scale * elements.mu, lambda = scale * elements.lambda;
+    int slot = 0;
     for (int a = 0; a < 4; ++a)
       for (int b = a; b < 4; ++b) {
         const Mat3 outer = turned[a] * turned[b].transpose();
-        Mat3 k = mu * outer.transpose() + lambda * outer;
+        Mat3 k = mu * outer.transpose() + lambda * outer;  // the block of (node a, node b)
         k.diagonal().array() += mu * g[a].dot(g[b]);
-        out[first + static_cast<size_t>(elements.pairOfBlock[t][a * 4 + b])].k += k;
-        if (b != a) out[first + static_cast<size_t>(elements.pairOfBlock[t][b * 4 + a])].k += k.transpose();
+        Mat3& pair = out[first + static_cast<size_t>(elements.pairOfBlock[t][slot++])].k;
+        if (tet.node[a] <= tet.node[b])
+          pair += k;
+        else
+          pair += k.transpose();
       }
   }
 }

@@ -35,10 +35,12 @@ struct FemElements {
   std::vector<FemTetrahedron> tetrahedra;
   double mu = 0.0;      // Pa
   double lambda = 0.0;  // Pa
-  // The node pairs the tetrahedra couple, each once (global indices), and per tetrahedron the
-  // pair of each of its 16 blocks (a × 4 + b): the stiffness goes out summed per pair.
+  // The node pairs the tetrahedra couple, each once with its lower node first (global indices:
+  // {a, b}, a ≤ b), and per tetrahedron the pair of each of its 10 blocks (a, b) with a ≤ b
+  // locally, in the order the two loops over a and b ≥ a meet them: the stiffness goes out summed
+  // per pair (K_ba = K_abᵀ, so the pairs with a > b are not kept).
   std::vector<std::array<int32_t, 2>> pairs;
-  std::vector<std::array<int32_t, 16>> pairOfBlock;
+  std::vector<std::array<int32_t, 10>> pairOfBlock;
 };
 
 // The tetrahedra's rest data; Young's modulus E (Pa) and Poisson's ratio ν.
@@ -51,7 +53,8 @@ FemElements makeFemElements(int32_t firstNode, std::span<const Vec3> restPositio
 void addFemForces(const FemElements& elements, std::span<const Vec3> position, std::span<Vec3> force,
                   int32_t offset, std::span<Mat3> rotations = {});
 
-// −h² K with the given rotations, as 3×3 node-pair blocks (global indices), one per coupled pair.
+// −h² K with the given rotations, as 3×3 node-pair blocks (global indices), one per coupled pair
+// {a, b} with a ≤ b: the block of (b, a) is the transpose of (a, b)'s.
 void addFemStiffnessBlocks(const FemElements& elements, std::span<const Mat3> rotations, double timeStep,
                            std::vector<NodePairStiffness>& out);
 

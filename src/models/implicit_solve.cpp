@@ -96,10 +96,7 @@ void solveImplicitVelocities(std::span<ImplicitBody* const> bodies, std::span<Su
   for (ImplicitBody* body : bodies) {
     std::vector<NodePairStiffness>& pairs = body->stiffnessBlocks;
     pairs.clear();
-    addFemStiffnessBlocks(body->fem, body->rotations, 1.0, pairs);
-    // −K is symmetric: each pair once (a ≤ b), its transpose applied with it.
-    pairs.erase(std::remove_if(pairs.begin(), pairs.end(), [](const NodePairStiffness& p) { return p.nodeA > p.nodeB; }),
-                pairs.end());
+    addFemStiffnessBlocks(body->fem, body->rotations, 1.0, pairs);  // each pair once (a ≤ b): −K is symmetric
   }
   // −K y (stiffness only) or −(h D + h² K) y (`damped`).
   auto negativeStiffness = [&](const std::vector<Vec3>& y, std::vector<Vec3>& out, bool damped) {
@@ -428,7 +425,13 @@ void solveImplicitVelocities(std::span<ImplicitBody* const> bodies, std::span<Su
 }
 
 void addImplicitStiffness(const ImplicitBody& body, const NodeArrays& nodes, double h, std::vector<NodePairStiffness>& out) {
+  // The elements' blocks, each pair once (a ≤ b), and the transposes of those off the diagonal:
+  // the direct block wants every block of its matrix.
+  const size_t first = out.size();
   addFemStiffnessBlocks(body.fem, body.rotations, h, out);
+  const size_t once = out.size();
+  for (size_t i = first; i < once; ++i)
+    if (out[i].nodeA != out[i].nodeB) out.push_back({out[i].nodeB, out[i].nodeA, out[i].k.transpose()});
   if (body.springs.empty()) return;
   // Each node's diagonal block once, summed over its springs; each spring's two off-diagonal ones.
   const size_t diagonal = out.size();
