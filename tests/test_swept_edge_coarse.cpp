@@ -62,8 +62,6 @@ struct Sheet {
                          {inverseMass[edges[e][0]] * direction[e], inverseMass[edges[e][1]] * direction[e]},
                          1.0 / diagonal(e)});
     s.smoothedOnNodes.assign(position.size(), Vec3::Zero());
-    s.coarseResidual.resize(edges.size());
-    s.coarseCorrection.resize(edges.size());
     aggregateSweptEdges(edges, s.coarse);
     buildSweptEdgeCoarse(direction, inverseMass, {}, s.coarse);
   }

@@ -304,14 +304,4 @@ inline bool sweptEdgeCoarseFits(const std::vector<Vec3>& direction, std::span<co
   return true;
 }
 
-// z += P A_c⁻¹ Pᵀ r, over the edges the level was built for (the leading rows of r and z; rows
-// after them, if any, have no coarse part).
-inline void applySweptEdgeCoarse(SweptEdgeCoarseLevel& c, const std::vector<double>& r, std::vector<double>& z) {
-  const size_t edges = std::min(r.size(), c.basisOfEdge.size());
-  c.rhs.setZero();
-  for (size_t e = 0; e < edges; ++e) c.rhs.segment<3>(3 * c.aggregateOfEdge[e]) += r[e] * c.basisOfEdge[e];
-  c.solution = c.factor.ldlt->solve(c.rhs);
-  for (size_t e = 0; e < edges; ++e) z[e] += c.basisOfEdge[e].dot(c.solution.segment<3>(3 * c.aggregateOfEdge[e]));
-}
-
 }  // namespace tandem

@@ -87,15 +87,13 @@ struct SweptEdgeSolveScratch {
   std::vector<std::array<int32_t, 2>> edgeNodes;  // the edges' nodes and directions, for the coarse level
   std::vector<Vec3> directions;
   SweptEdgeCoarseLevel coarse;
-  std::vector<Vec3> smoothedOnNodes;                       // W Jᵀ z of the preconditioner's z, per node
-  std::vector<double> coarseResidual, coarseCorrection;  // per row
+  std::vector<Vec3> smoothedOnNodes;  // W Jᵀ z of the preconditioner's z, per node
 };
 
 // z = B r, the symmetric two-level cycle from z = 0: a Gauss-Seidel pass over the edges, the
 // coarse correction of what it left, a pass back (Jacobi alone if the coarse factorisation
 // failed). y = W Jᵀ z on the nodes, so that A z is read an edge at a time. Needs s.edges, the
-// coarse level built for them, and the scratch sized (smoothedOnNodes to the nodes, the two
-// coarse vectors to the edges).
+// coarse level built for them, and smoothedOnNodes sized to the nodes.
 inline void preconditionSweptEdges(SweptEdgeSolveScratch& s, const std::vector<double>& r, std::vector<double>& z) {
   const size_t n = s.edges.size(), m = s.rowCount();
   if (!s.coarse.factor.ready) {
@@ -133,12 +131,14 @@ inline void preconditionSweptEdges(SweptEdgeSolveScratch& s, const std::vector<d
   std::fill(z.begin(), z.begin() + static_cast<std::ptrdiff_t>(m), 0.0);
   for (size_t i = 0; i < n; ++i) addEdge(i, unmetEdge(i) * s.edges[i].effectiveMass);
   for (size_t i = n; i < m; ++i) addStar(i, unmetStar(i) * s.stars[i - n].effectiveMass);
-  for (size_t i = 0; i < m; ++i) {
-    s.coarseResidual[i] = i < n ? unmetEdge(i) : unmetStar(i);
-    s.coarseCorrection[i] = 0.0;
-  }
-  applySweptEdgeCoarse(s.coarse, s.coarseResidual, s.coarseCorrection);
-  for (size_t i = 0; i < n; ++i) addEdge(i, s.coarseCorrection[i]);
+  // The coarse correction P A_c⁻¹ Pᵀ of what the pass left (the edges' rows only: the stars have
+  // no coarse part), each edge's residual restricted as it is read and its correction added as
+  // it is prolonged.
+  SweptEdgeCoarseLevel& c = s.coarse;
+  c.rhs.setZero();
+  for (size_t i = 0; i < n; ++i) c.rhs.segment<3>(3 * c.aggregateOfEdge[i]) += unmetEdge(i) * c.basisOfEdge[i];
+  c.solution = c.factor.ldlt->solve(c.rhs);
+  for (size_t i = 0; i < n; ++i) addEdge(i, c.basisOfEdge[i].dot(c.solution.segment<3>(3 * c.aggregateOfEdge[i])));
   for (size_t i = m; i-- > n;) addStar(i, unmetStar(i) * s.stars[i - n].effectiveMass);
   for (size_t i = n; i-- > 0;) addEdge(i, unmetEdge(i) * s.edges[i].effectiveMass);
 }
@@ -169,8 +169,6 @@ inline void solveSweptEdgeSystem(SweptEdgeSolveScratch& s, size_t nodeCount, int
   const size_t edges = s.edges.size(), n = s.rowCount();
   if (s.smoothedOnNodes.size() < nodeCount) s.smoothedOnNodes.resize(nodeCount);
   if (s.onNodes.size() < nodeCount) s.onNodes.resize(nodeCount);
-  s.coarseResidual.resize(n);
-  s.coarseCorrection.resize(n);
   s.residual.resize(n);
   s.preconditioned.resize(n);
   s.direction.resize(n);
