@@ -91,9 +91,12 @@ struct ContactRow {
   }
 };
 
+// (The unused entries, coefficient 0 on node[0] again, are skipped: most contacts are a node on a
+// rigid shape, and three updates of the same node's velocity chained each of their impulses.)
 inline Vec3 contactRelativeVelocity(const ContactRow& row, const SolverContext& ctx) {
   Vec3 v = Vec3::Zero();
-  for (int k = 0; k < 4; ++k) v += row.coefficient[k] * ctx.velocity[row.node[k]];
+  for (int k = 0; k < 4; ++k)
+    if (row.coefficient[k] != 0.0) v += row.coefficient[k] * ctx.velocity[row.node[k]];
   if (row.body >= 0) v -= ctx.rigid[row.body].velocityAt(row.offset);
   return v;
 }
@@ -139,7 +142,8 @@ inline void prepareContact(ContactRow& row, std::span<const Vec3> velocity, std:
 }
 
 inline void applyContactImpulse(const ContactRow& row, const Vec3& impulse, SolverContext& ctx) {
-  for (int k = 0; k < 4; ++k) ctx.velocity[row.node[k]] += (row.coefficient[k] * ctx.inverseMass[row.node[k]]) * impulse;
+  for (int k = 0; k < 4; ++k)
+    if (row.coefficient[k] != 0.0) ctx.velocity[row.node[k]] += (row.coefficient[k] * ctx.inverseMass[row.node[k]]) * impulse;
   if (row.body >= 0) ctx.rigid[row.body].applyImpulse(-impulse, row.offset);
 }
 

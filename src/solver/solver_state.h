@@ -98,6 +98,7 @@ struct RigidSolverState {
 
   // The velocity change of a generalised impulse (F, τ) about the centre of mass.
   void applyGeneralisedImpulse(const Vec3& force, const Vec3& torque) {
+    if (inverseMass == 0.0 && !isJointed()) return;  // static, kinematic or asleep: it does not move
     if (isJointed()) {
       const int k = freedoms;
       Vec6 generalised;
