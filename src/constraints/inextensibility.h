@@ -42,6 +42,7 @@
 
 #include "solver/solver_state.h"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 
@@ -103,25 +104,44 @@ inline void warmStartInextensibility(const InextensibilityRow& row, SolverContex
   if (row.effectiveMass != 0.0) applyNodeImpulse(row.node, row.jacobian, row.lambda, ctx);
 }
 
-inline void solveInextensibility(InextensibilityRow& row, SolverContext& ctx, SweepStats& stats) {
-  if (row.effectiveMass == 0.0) return;
-  stats.add(solveNodeRow(row.node, row.jacobian, row.effectiveMass, row.bias, row.stepLambdaMin,
-                         row.stepLambdaMax, row.lambda, ctx));
-}
-
-// The geometric stiffness of a swept edge (above); `ctx.startVelocity` holds v⁰.
-inline void solveGeometricStiffness(InextensibilityRow& row, SolverContext& ctx) {
+// The geometric stiffness of a swept edge (above) on its nodes' velocities vᵢ, v_j, held by the
+// caller; `ctx.startVelocity` holds v⁰.
+inline void applyGeometricStiffness(InextensibilityRow& row, const SolverContext& ctx, Vec3& vi, Vec3& vj) {
   if (row.sidewaysMass == 0.0 || row.effectiveMass == 0.0 || ctx.startVelocity.empty()) return;
   const int32_t i = row.node[0], j = row.node[1];
   const Vec3& n = row.jacobian[1];
-  Vec3 u = (ctx.velocity[j] - ctx.velocity[i]) - (ctx.startVelocity[j] - ctx.startVelocity[i]);
+  Vec3 u = (vj - vi) - (ctx.startVelocity[j] - ctx.startVelocity[i]);
   u -= u.dot(n) * n;
   const double s = row.sidewaysMass;
   const double w = ctx.inverseMass[i] + ctx.inverseMass[j];
   const Vec3 delta = -(s * u + row.sidewaysImpulse) / (s * w + 1.0);
   row.sidewaysImpulse += delta;
-  ctx.velocity[i] -= ctx.inverseMass[i] * delta;
-  ctx.velocity[j] += ctx.inverseMass[j] * delta;
+  vi -= ctx.inverseMass[i] * delta;
+  vj += ctx.inverseMass[j] * delta;
+}
+
+inline void solveGeometricStiffness(InextensibilityRow& row, SolverContext& ctx) {
+  applyGeometricStiffness(row, ctx, ctx.velocity[row.node[0]], ctx.velocity[row.node[1]]);
+}
+
+// A swept edge's sweep: its row, then its geometric stiffness, on the two velocities loaded once
+// (the same arithmetic as solveNodeRow's on the row, then solveGeometricStiffness).
+inline void solveSweptEdge(InextensibilityRow& row, SolverContext& ctx, SweepStats& stats) {
+  if (row.effectiveMass == 0.0) return;
+  const int32_t i = row.node[0], j = row.node[1];
+  Vec3 vi = ctx.velocity[i], vj = ctx.velocity[j];
+  double jv = row.bias;
+  jv += row.jacobian[0].dot(vi);
+  jv += row.jacobian[1].dot(vj);
+  const double previous = row.lambda;
+  row.lambda = std::clamp(previous - row.effectiveMass * jv, row.stepLambdaMin, row.stepLambdaMax);
+  const double delta = row.lambda - previous;
+  vi += (delta * ctx.inverseMass[i]) * row.jacobian[0];
+  vj += (delta * ctx.inverseMass[j]) * row.jacobian[1];
+  stats.add(delta);
+  applyGeometricStiffness(row, ctx, vi, vj);
+  ctx.velocity[i] = vi;
+  ctx.velocity[j] = vj;
 }
 
 }  // namespace tandem

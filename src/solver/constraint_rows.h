@@ -123,11 +123,7 @@ struct ConstraintRows {
       if (row.active) solveGrab(row, ctx, stats);
     if (sweepSolvesSweptEdges(ctx.iteration, ctx.iterations))
       solveSweptEdgesTogether(inextensibility, sweptEdges, ctx, m_sweptEdgeSolve);
-    for (int32_t r : sweptEdges) {
-      InextensibilityRow& row = inextensibility[static_cast<size_t>(r)];
-      solveInextensibility(row, ctx, stats);
-      solveGeometricStiffness(row, ctx);
-    }
+    for (int32_t r : sweptEdges) solveSweptEdge(inextensibility[static_cast<size_t>(r)], ctx, stats);
     for (BendingRow& row : bending) solveBending(row, ctx, stats);
     for (FixedPointRow& row : fixedPoints)
       if (!row.inDirectBlock) solveFixedPoint(row, ctx, stats);
