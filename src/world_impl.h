@@ -129,7 +129,7 @@ struct World::Impl final : bullet::SolverHooks {
   // Last step's contact impulses by feature, for warm starting: sorted by key (the last of equal
   // keys counts), kept in place so that the step allocates nothing once grown.
   std::vector<std::pair<uint64_t, ContactImpulse>> previousContacts;
-  std::vector<uint32_t> previousContactOrder;  // scratch of setPreviousContacts
+  std::vector<std::pair<uint64_t, uint32_t>> previousContactOrder;  // scratch of setPreviousContacts
   const ContactImpulse* previousContact(uint64_t key) const;
   void setPreviousContacts();  // from this step's rows
   std::vector<char> supportAssigned;  // per node: scratch of detectDeformableContacts

@@ -3,7 +3,6 @@
 // src/world_impl.h holds the state.)
 #include "world_impl.h"
 
-#include <numeric>
 
 namespace tandem {
 
@@ -90,15 +89,14 @@ const ContactImpulse* World::Impl::previousContact(uint64_t key) const {
 }
 
 void World::Impl::setPreviousContacts() {
-  // By key, equal keys in row order (std::stable_sort would allocate its buffer).
-  std::vector<uint32_t>& order = previousContactOrder;
+  // By key, equal keys in row order (std::stable_sort would allocate its buffer), sorted as
+  // (key, row) pairs side by side rather than rows reached through an index.
+  std::vector<std::pair<uint64_t, uint32_t>>& order = previousContactOrder;
   order.resize(rows.contacts.size());
-  std::iota(order.begin(), order.end(), 0u);
-  std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
-    return rows.contacts[a].key < rows.contacts[b].key || (rows.contacts[a].key == rows.contacts[b].key && a < b);
-  });
+  for (uint32_t i = 0; i < order.size(); ++i) order[i] = {rows.contacts[i].key, i};
+  std::sort(order.begin(), order.end());
   previousContacts.clear();
-  for (uint32_t i : order) {
+  for (const auto& [key, i] : order) {
     const ContactRow& row = rows.contacts[i];
     previousContacts.push_back(
         {row.key, {row.lambdaNormal, row.impulse() - row.lambdaNormal * row.normal, row.releasedFromBlock}});
