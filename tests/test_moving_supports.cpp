@@ -26,9 +26,11 @@ DeformableDesc femJelly(const Vec3& baseCentre, double mass) {
 // Without gravity, a 2 kg plate pushed at 0.5 m/s onto a free 0.5 kg jelly: the holds' impulses
 // on the jelly's nodes and their reactions on the plate are equal and opposite, so the momentum
 // of the whole stays the plate's first momentum, every step, while the jelly takes at least its
-// share of a plastic impact, m / (m + M) = 20 % (pushed whole, not only its top layer). Kept to 3·10⁻⁷ of it: what the models' conjugate
-// gradients leave (their tolerance, 10⁻⁴ of the right-hand side) and the first contact's
-// position stages; a reaction given wrongly would be off by its whole size.
+// share of a plastic impact, m / (m + M) = 20 % (pushed whole, not only its top layer). Kept to 10⁻⁵ of it: what the models' conjugate
+// gradients leave (their tolerance, 10⁻⁴ of the right-hand side: the unsolved residual's sum is
+// momentum lost, 3·10⁻⁷ with the scalar Jacobi preconditioner, 3.8·10⁻⁶ with the 3 × 3 blocks
+// since the twenty-sixth session) and the first contact's position stages; a reaction given
+// wrongly would be off by its whole size.
 TEST(MovingSupports, KeepMomentumWhenAPlatePushesAFreeJelly) {
   World world;
   WorldSettings settings = world.settings();
@@ -47,7 +49,7 @@ TEST(MovingSupports, KeepMomentumWhenAPlatePushesAFreeJelly) {
   double held = 0.0;
   for (int step = 0; step < 50; ++step) {
     ASSERT_TRUE(world.step(kStep).ok()) << "step " << step;
-    EXPECT_LT((world.totalLinearMomentum() - start).norm(), 1e-6 * start.norm()) << "step " << step;
+    EXPECT_LT((world.totalLinearMomentum() - start).norm(), 1e-5 * start.norm()) << "step " << step;
     for (const ContactReport& contact : world.contacts())
       if (contact.rigid && *contact.rigid == plateId) held += contact.normalImpulse;
   }

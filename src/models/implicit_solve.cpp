@@ -137,8 +137,11 @@ void solveImplicitVelocities(std::span<ImplicitBody* const> bodies, std::span<Su
                          : Vec3::Zero();
     }
 
-  // Jacobi preconditioner: P = diag(m + h² tr(−K_ii)/3 + tr(h² K_s + h D_s)/3) per node, elements'
-  // and springs' blocks.
+  // Block-Jacobi preconditioner: per node, its 3 × 3 diagonal block of A, P_i = m I + h² (−K_ii) +
+  // h² K_s + h D_s (elements' and springs' blocks), inverted; the supports' blocks below take
+  // their held nodes' scalar m + tr(…)/3. With the scalar per node for both (before the
+  // twenty-sixth session) jelly_dish took 9,437 iterations in 500 steps (182 at most, 14.3 a step
+  // at rest); with the blocks 8,233 (170, 12.4).
   std::vector<double>& preconditioner = work.preconditioner;
   preconditioner.assign(count, 0.0);
   for (int32_t i = 0; i < count; ++i) preconditioner[i] = mass[i];
@@ -152,6 +155,20 @@ void solveImplicitVelocities(std::span<ImplicitBody* const> bodies, std::span<Su
     for (int32_t node : {springs[s].nodeA, springs[s].nodeB})
       if (mass[node] > 0) preconditioner[node] += k;
   }
+  std::vector<Mat3>& nodePreconditioner = work.nodePreconditioner;
+  nodePreconditioner.assign(count, Mat3::Zero());
+  for (int32_t i = 0; i < count; ++i) nodePreconditioner[i].diagonal().setConstant(mass[i]);
+  for (size_t k = 0; k < bodies.size(); ++k) {
+    const int32_t shift = sliceStart[k] - bodies[k]->firstNode;
+    for (const NodePairStiffness& pair : bodies[k]->stiffnessBlocks)
+      if (pair.nodeA == pair.nodeB) nodePreconditioner[pair.nodeA + shift] += h * h * pair.k;
+  }
+  for (size_t s = 0; s < springs.size(); ++s) {
+    const Mat3 k = h * h * blocks[s].stiffness + h * blocks[s].damping;
+    for (int32_t node : {springs[s].nodeA, springs[s].nodeB}) nodePreconditioner[node] += k;
+  }
+  for (int32_t i = 0; i < count; ++i)
+    nodePreconditioner[i] = mass[i] > 0 ? Mat3(nodePreconditioner[i].inverse()) : Mat3::Zero();
 
   // Held nodes, and the normal Δv each must take (see the header); a node on a moving support
   // takes its support's normal motion on top, which the solve finds with the nodes'.
@@ -199,7 +216,7 @@ void solveImplicitVelocities(std::span<ImplicitBody* const> bodies, std::span<Su
     }
   }
 
-  // Filtered conjugate gradients (Baraff and Witkin 1998), Jacobi-preconditioned, from last step's
+  // Filtered conjugate gradients (Baraff and Witkin 1998), block-Jacobi-preconditioned, from last step's
   // Δv: S takes out the held normal components, and the whole of a stuck node's; a moving
   // support's motion (V, Ω) comes back in through them, n (n · (V + Ω × r)) at each of its held
   // nodes, and its mass and inertia are its own part of the system, with its gravity and the
@@ -352,7 +369,7 @@ void solveImplicitVelocities(std::span<ImplicitBody* const> bodies, std::span<Su
     filter(r);
     auto precondition = [&]() {  // z = S P⁻¹ r, and returns r·z
       double rz = 0.0;
-      for (int32_t i = 0; i < count; ++i) z[i] = mass[i] > 0 ? Vec3(r[i] / preconditioner[i]) : Vec3::Zero();
+      for (int32_t i = 0; i < count; ++i) z[i] = nodePreconditioner[i] * r[i];
       filter(z);
       for (int32_t i = 0; i < count; ++i) rz += r[i].dot(z[i]);
       for (int32_t j = 0; j < 2 * supportCount; ++j) {

@@ -98,6 +98,7 @@ struct MovingSupport {
 struct ImplicitSolveScratch {
   std::vector<Vec3> velocity, position, force, product, b, stiffnessTimesVelocity, held, r, z, p, ap, full, x;
   std::vector<double> mass, preconditioner, heldChange;
+  std::vector<Mat3> nodePreconditioner;  // per node: its 3 × 3 diagonal block of A, inverted
   // Per node held with friction: μ, the Δv that sticks it, its sliding push (zero while stuck),
   // and whether it is stuck, and has stuck after sliding in this step.
   std::vector<double> friction;
