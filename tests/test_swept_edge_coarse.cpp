@@ -62,6 +62,7 @@ struct Sheet {
                          {inverseMass[edges[e][0]] * direction[e], inverseMass[edges[e][1]] * direction[e]},
                          1.0 / diagonal(e)});
     s.smoothedOnNodes.assign(position.size(), Vec3::Zero());
+    listSweptEdgeNodes(s, position.size());
     aggregateSweptEdges(edges, s.coarse);
     buildSweptEdgeCoarse(direction, inverseMass, {}, s.coarse);
   }

@@ -88,12 +88,29 @@ struct SweptEdgeSolveScratch {
   std::vector<Vec3> directions;
   SweptEdgeCoarseLevel coarse;
   std::vector<Vec3> smoothedOnNodes;  // W Jᵀ z of the preconditioner's z, per node
+  std::vector<int32_t> rowNodes;      // the nodes the rows touch, each once (solveSweptEdgeSystem's)
+  std::vector<char> touched;          // per node: scratch of finding them
 };
+
+// s.rowNodes: the nodes the rows touch, each once (what the products and the preconditioner
+// clear); `nodeCount` bounds their indices.
+inline void listSweptEdgeNodes(SweptEdgeSolveScratch& s, size_t nodeCount) {
+  s.touched.assign(nodeCount, 0);
+  s.rowNodes.clear();
+  auto touch = [&](int32_t node) {
+    if (!s.touched[static_cast<size_t>(node)]) s.rowNodes.push_back(node);
+    s.touched[static_cast<size_t>(node)] = 1;
+  };
+  for (const SweptEdgeSolveScratch::Edge& e : s.edges) touch(e.node[0]), touch(e.node[1]);
+  for (const SweptEdgeSolveScratch::Star& star : s.stars)
+    for (int32_t node : star.node) touch(node);
+}
 
 // z = B r, the symmetric two-level cycle from z = 0: a Gauss-Seidel pass over the edges, the
 // coarse correction of what it left, a pass back (Jacobi alone if the coarse factorisation
 // failed). y = W Jᵀ z on the nodes, so that A z is read an edge at a time. Needs s.edges, the
-// coarse level built for them, and smoothedOnNodes sized to the nodes.
+// coarse level built for them, smoothedOnNodes sized to the nodes and the nodes listed
+// (listSweptEdgeNodes).
 inline void preconditionSweptEdges(SweptEdgeSolveScratch& s, const std::vector<double>& r, std::vector<double>& z) {
   const size_t n = s.edges.size(), m = s.rowCount();
   if (!s.coarse.factor.ready) {
@@ -102,9 +119,7 @@ inline void preconditionSweptEdges(SweptEdgeSolveScratch& s, const std::vector<d
     return;
   }
   std::vector<Vec3>& y = s.smoothedOnNodes;
-  for (const SweptEdgeSolveScratch::Edge& e : s.edges) y[e.node[0]] = y[e.node[1]] = Vec3::Zero();
-  for (const SweptEdgeSolveScratch::Star& star : s.stars)
-    for (int32_t node : star.node) y[node] = Vec3::Zero();
+  for (int32_t node : s.rowNodes) y[node] = Vec3::Zero();
   // The edges' rows and the stars' (rows n to m), each in loops of their own: the edges' are the
   // cloth's hot path.
   auto addEdge = [&](size_t i, double delta) {
@@ -174,11 +189,10 @@ inline void solveSweptEdgeSystem(SweptEdgeSolveScratch& s, size_t nodeCount, int
   s.direction.resize(n);
   s.product.resize(n);
   s.impulse.assign(n, 0.0);
+  listSweptEdgeNodes(s, nodeCount);
   // out = J W Jᵀ x over the rows.
   auto multiply = [&](const std::vector<double>& x, std::vector<double>& out) {
-    for (const SweptEdgeSolveScratch::Edge& e : s.edges) s.onNodes[e.node[0]] = s.onNodes[e.node[1]] = Vec3::Zero();
-    for (const SweptEdgeSolveScratch::Star& star : s.stars)
-      for (int32_t node : star.node) s.onNodes[node] = Vec3::Zero();
+    for (int32_t node : s.rowNodes) s.onNodes[node] = Vec3::Zero();
     for (size_t i = 0; i < edges; ++i) {
       const SweptEdgeSolveScratch::Edge& e = s.edges[i];
       s.onNodes[e.node[0]] -= x[i] * e.response[0];
