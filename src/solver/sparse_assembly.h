@@ -2,6 +2,7 @@
 
 #include <Eigen/SparseCore>
 
+#include <cassert>
 #include <span>
 #include <vector>
 
@@ -17,6 +18,18 @@ class SparseAssembly {
  public:
   enum class Part { Whole, LowerTriangle };
   explicit SparseAssembly(Part part) : m_part(part) {}
+
+  // The values alone of triplets at the positions last assembled, in the same order (the caller
+  // knows they are the same): one pass, no positions compared and no triplets built.
+  void assignValues(std::span<const double> values, Eigen::SparseMatrix<double>& matrix) const {
+    assert(values.size() == m_slot.size());
+    double* value = matrix.valuePtr();
+    for (size_t e = 0; e < values.size(); ++e) {
+      const int slot = m_slot[e];
+      if (slot < 0) continue;
+      value[slot] = m_first[e] ? values[e] : value[slot] + values[e];
+    }
+  }
 
   // Writes `matrix` (rows × columns); returns whether its pattern was rebuilt.
   bool assemble(std::span<const Eigen::Triplet<double>> entries, Eigen::Index rows, Eigen::Index columns,

@@ -66,7 +66,9 @@ struct SweptEdgeCoarseLevel {
   std::vector<std::array<Vec3, 2>> frame;  // per patch: t₁, t₂
   std::vector<Vec3> basisOfEdge;           // q(nₑ) in its patch's frame
   std::vector<Mat3> slotImage;             // G = Jᵀ P at the slot's node, for the slot's patch
-  std::vector<Eigen::Triplet<double>> entries;  // A_c's, its blocks in the slot pairs' order
+  std::vector<Eigen::Triplet<double>> entries;  // A_c's lower triangle, its blocks in the slot pairs' order
+  std::vector<double> values;                   // their values alone, once placed
+  bool entriesPlaced = false;                   // assembled once with these patches
   SparseAssembly assembly{SparseAssembly::Part::LowerTriangle};  // of entries into matrix
   // A_c (its lower triangle) and its factorisation. A copy (a world's snapshot) factorises the
   // copied matrix again, which gives the same factors: the level is kept from step to step
@@ -212,6 +214,7 @@ inline void aggregateSweptEdges(const std::vector<std::array<int32_t, 2>>& edgeN
   }
   c.factor.analysed = false;
   c.factor.ready = false;
+  c.entriesPlaced = false;
 }
 
 // The coarse matrix for the edges' current directions, factorised. `direction[e]` is edge e's n,
@@ -239,9 +242,20 @@ inline void buildSweptEdgeCoarse(const std::vector<Vec3>& direction, std::span<c
     c.slotImage[c.slotOfEdge[e][0]] -= image;
     c.slotImage[c.slotOfEdge[e][1]] += image;
   }
-  // A_c = Σ over nodes of w Gᵀ G, block by block; its pattern stays while the patches do.
+  // A_c = Σ over nodes of w Gᵀ G, block by block, its lower triangle (all LDLᵀ reads); its
+  // pattern stays while the patches do, so after the first assembly with them only the values
+  // are written, in the same order.
   const int32_t size = 3 * c.aggregateCount;
+  const bool placed = c.entriesPlaced;
   c.entries.clear();
+  c.values.clear();
+  auto add = [&](int32_t row, int32_t column, double value) {
+    if (row < column) return;
+    if (placed)
+      c.values.push_back(value);
+    else
+      c.entries.emplace_back(row, column, value);
+  };
   for (const auto& [s, t] : c.slotPairs) {
     const auto node = static_cast<size_t>(c.slotNode[s]);
     Mat3 block = c.slotImage[s].transpose() * c.slotImage[t];
@@ -251,13 +265,19 @@ inline void buildSweptEdgeCoarse(const std::vector<Vec3>& direction, std::span<c
     const int32_t rows = 3 * c.slotAggregate[s], columns = 3 * c.slotAggregate[t];
     for (int j = 0; j < 3; ++j)
       for (int i = 0; i < 3; ++i) {
-        c.entries.emplace_back(rows + i, columns + j, block(i, j));
-        if (rows != columns) c.entries.emplace_back(columns + j, rows + i, block(i, j));
+        add(rows + i, columns + j, block(i, j));
+        if (rows != columns) add(columns + j, rows + i, block(i, j));
       }
   }
-  for (int32_t k = 0; k < size; ++k) c.entries.emplace_back(k, k, 0.0);  // every diagonal entry present
+  for (int32_t k = 0; k < size; ++k) add(k, k, 0.0);  // every diagonal entry present
   Eigen::SparseMatrix<double>& matrix = c.factor.matrix;
-  const bool newPattern = c.assembly.assemble(c.entries, size, size, matrix);
+  bool newPattern = false;
+  if (placed) {
+    c.assembly.assignValues(c.values, matrix);
+  } else {
+    newPattern = c.assembly.assemble(c.entries, size, size, matrix);
+    c.entriesPlaced = true;
+  }
   // A column no edge of its patch uses (a sheet with two edge directions has no shear) is kept
   // apart with a unit diagonal; every other gets a part in 10⁹ of the largest as regularisation.
   double largest = 0.0;
