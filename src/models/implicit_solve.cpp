@@ -216,8 +216,8 @@ void solveImplicitVelocities(std::span<ImplicitBody* const> bodies, std::span<Su
     }
   }
 
-  // Filtered conjugate gradients (Baraff and Witkin 1998), block-Jacobi-preconditioned, from last step's
-  // Δv: S takes out the held normal components, and the whole of a stuck node's; a moving
+  // Filtered conjugate gradients (Baraff and Witkin 1998), block-Jacobi-preconditioned, from last
+  // step's Δv: S takes out the held normal components, and the whole of a stuck node's; a moving
   // support's motion (V, Ω) comes back in through them, n (n · (V + Ω × r)) at each of its held
   // nodes, and its mass and inertia are its own part of the system, with its gravity and the
   // impulse the rest of the world gives it.

@@ -255,11 +255,11 @@ struct SheetContact {
 // it; docs/solver.md). The coarse level is built again for the edges' directions in the stage's
 // first projection (`coarseBuilt` false; it is set) if it no longer fits them
 // (sweptEdgeCoarseFits: it is kept from step to step while it does) and kept for the stage's
-// other projections (a preconditioner need not be exact), unless the edges have changed; the contact rows have no coarse part. Nothing is done
-// unless some edge is past a bound by more than the passes' convergence (kStrainConverged of its
-// length), or some contact closed past its gap by twice the slop: at rest one pass is all a
-// draped cloth needs, and building the coarse level for it was a quarter of the paper's cloth's
-// step.
+// other projections (a preconditioner need not be exact), unless the edges have changed; the
+// contact rows have no coarse part. Nothing is done unless some edge is past a bound by more
+// than the passes' convergence (kStrainConverged of its length), or some contact closed past its
+// gap by twice the slop: at rest one pass is all a draped cloth needs, and building the coarse
+// level for it was a quarter of the paper's cloth's step.
 inline void projectSheetEdgesTogether(std::span<const LimitedEdge> edges, std::span<const double> weight,
                                       std::span<const Vec3> heldAlong, std::span<Vec3> x, std::span<Vec3> reaction,
                                       SweptEdgeSolveScratch& s, bool& coarseBuilt,

@@ -17,12 +17,12 @@
 // P(e, (a, k)) = qₖ(nₑ) for an edge e of patch a, q = ((n·t₁)², (n·t₂)², 2 (n·t₁)(n·t₂)). The
 // coarse matrix is Galerkin's, A_c = Pᵀ A P, assembled through the nodes (A = J W Jᵀ, so
 // A_c = Σ_nodes w Gᵀ G with G = Jᵀ P at the node) by solver/sparse_assembly.h (one pass over the
-// values while the patches stay) and factorised by sparse LDLᵀ in each (sub)step (Eigen's numeric
-// factorisation allocates its working copy of the matrix: one small allocation a (sub)step). The
-// preconditioner is the symmetric two-level
-// cycle (solver/swept_edge_solve.h): a Gauss-Seidel pass over the edges, the coarse correction
-// P A_c⁻¹ Pᵀ of what it left, a pass back; symmetric and positive definite, so conjugate
-// gradients apply. On a 61 × 61 sheet hanging from one row it cuts the iterations to a part in
+// values while the patches stay) and factorised by sparse LDLᵀ whenever it is built: in a
+// (sub)step whose edges no longer fit the level kept from an earlier one (sweptEdgeCoarseFits;
+// Eigen's numeric factorisation allocates its working copy of the matrix: one small allocation a
+// build). The preconditioner is the symmetric two-level cycle (solver/swept_edge_solve.h): a
+// Gauss-Seidel pass over the edges, the coarse correction P A_c⁻¹ Pᵀ of what it left, a pass
+// back; symmetric and positive definite, so conjugate gradients apply. On a 61 × 61 sheet hanging from one row it cuts the iterations to a part in
 // 10⁶ to a third of Jacobi's (154 against 458; tests/test_swept_edge_coarse.cpp): patches of
 // uniform stress interpolate a smooth field piecewise, so the coarse level is not exact there.
 //
@@ -300,11 +300,12 @@ inline void buildSweptEdgeCoarse(const std::vector<Vec3>& direction, std::span<c
 }
 
 // How far (|n − n₀|, about the angle in radians) the edges may turn in the root mean square, or
-// a node's held direction change, before the coarse level built for n₀ is built again. It is a preconditioner: a level
-// a few degrees out of date slows the conjugate gradients a little and changes nothing they
-// converge to, and at rest a sheet's edges turn by far less from step to step, so the level
-// (its patches' planes, the Galerkin product and its factorisation: a tenth of the paper's
-// cloth's step when built in every step) is kept. Measured: docs/solver.md, twenty-sixth session.
+// a node's held direction change, before the coarse level built for n₀ is built again. It is a
+// preconditioner: a level a few degrees out of date slows the conjugate gradients a little and
+// changes nothing they converge to, and at rest a sheet's edges turn by far less from step to
+// step, so the level (its patches' planes, the Galerkin product and its factorisation: a tenth of
+// the paper's cloth's step when built in every step) is kept. Measured: docs/performance.md and
+// docs/solver.md, twenty-sixth session.
 inline constexpr double kSweptEdgeCoarseKeptTurn = 0.05;
 
 // Whether the level, factorised, was built for these edges' directions (their root mean square

@@ -265,7 +265,7 @@ inline void solveSweptEdgesTogether(std::span<InextensibilityRow> rows, std::spa
   }
   const size_t n = s.edges.size();
   if (n == 0) return;
-  // The coarse level: its patches made when the edges change, its matrix in each (sub)step.
+  // The coarse level: its patches made when the edges change, its matrix when they no longer fit it.
   if (ctx.iteration == 0) prepareSweptEdgeCoarse(s, ctx.inverseMass);
   s.residual.resize(n);
   for (size_t i = 0; i < n; ++i) {
