@@ -89,7 +89,12 @@ void solveImplicitVelocities(std::span<ImplicitBody* const> bodies, std::span<Su
       springs.push_back(spring);
     }
   }
-  for (const EdgeSpring& spring : springs) blocks.push_back(springBlocks(spring, position));
+  std::vector<Mat3>& dampedBlocks = work.dampedSpringBlocks;  // h² K_s + h D_s, per spring
+  dampedBlocks.clear();
+  for (const EdgeSpring& spring : springs) {
+    blocks.push_back(springBlocks(spring, position));
+    dampedBlocks.push_back(h * h * blocks.back().stiffness + h * blocks.back().damping);
+  }
   addSpringForces(springs, position, velocity, force);
 
   // The elements' −K by node pair, with this step's rotations.
@@ -111,7 +116,7 @@ void solveImplicitVelocities(std::span<ImplicitBody* const> bodies, std::span<Su
     if (damped)
       for (Vec3& o : out) o *= h * h;
     for (size_t s = 0; s < springs.size(); ++s) {
-      const Mat3 block = damped ? Mat3(h * h * blocks[s].stiffness + h * blocks[s].damping) : blocks[s].stiffness;
+      const Mat3& block = damped ? dampedBlocks[s] : blocks[s].stiffness;
       const Vec3 stretch = block * (y[springs[s].nodeB] - y[springs[s].nodeA]);
       out[springs[s].nodeB] += stretch;
       out[springs[s].nodeA] -= stretch;
@@ -151,7 +156,7 @@ void solveImplicitVelocities(std::span<ImplicitBody* const> bodies, std::span<Su
       if (pair.nodeA == pair.nodeB && mass[pair.nodeA + shift] > 0) preconditioner[pair.nodeA + shift] += h * h * pair.k.trace() / 3.0;
   }
   for (size_t s = 0; s < springs.size(); ++s) {
-    const double k = (h * h * blocks[s].stiffness + h * blocks[s].damping).trace() / 3.0;
+    const double k = dampedBlocks[s].trace() / 3.0;
     for (int32_t node : {springs[s].nodeA, springs[s].nodeB})
       if (mass[node] > 0) preconditioner[node] += k;
   }
@@ -164,8 +169,7 @@ void solveImplicitVelocities(std::span<ImplicitBody* const> bodies, std::span<Su
       if (pair.nodeA == pair.nodeB) nodePreconditioner[pair.nodeA + shift] += h * h * pair.k;
   }
   for (size_t s = 0; s < springs.size(); ++s) {
-    const Mat3 k = h * h * blocks[s].stiffness + h * blocks[s].damping;
-    for (int32_t node : {springs[s].nodeA, springs[s].nodeB}) nodePreconditioner[node] += k;
+    for (int32_t node : {springs[s].nodeA, springs[s].nodeB}) nodePreconditioner[node] += dampedBlocks[s];
   }
   for (int32_t i = 0; i < count; ++i)
     nodePreconditioner[i] = mass[i] > 0 ? Mat3(nodePreconditioner[i].inverse()) : Mat3::Zero();

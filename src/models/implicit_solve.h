@@ -109,6 +109,7 @@ struct ImplicitSolveScratch {
   std::vector<int32_t> sliceStart;  // per body: its first node in these vectors
   std::vector<EdgeSpring> springs;  // the bodies', in these vectors' indices
   std::vector<SpringBlocks> springBlocks;
+  std::vector<Mat3> dampedSpringBlocks;  // h² K_s + h D_s, what the products apply
   // Per moving support, linear then angular: Δ, residual, preconditioned residual, direction,
   // product, and the preconditioner's 3 × 3 blocks (inverted).
   std::vector<Vec3> supportChange, supportResidual, supportPreconditioned, supportDirection, supportProduct;
