@@ -109,20 +109,33 @@ TEST(StepAllocations, PositionBasedParadigmsAllocateNothingOnceTheirScratchHasGr
 }
 
 // PBD's rest geometry: each edge's length and each tetrahedron's six volumes, positive for the
-// generator's tetrahedra, summing to six times the cylinder's volume (its polygonal section).
+// generator's tetrahedra, summing to six times the cylinder's volume (its polygonal section);
+// every edge and tetrahedron of the mesh there once (in the projections' colour order).
 TEST(StepAllocations, PositionBasedRestHoldsEdgeLengthsAndVolumes) {
   const Jelly jelly;
-  ASSERT_EQ(jelly.rest.edgeLength.size(), jelly.mesh.edges.size());
-  ASSERT_EQ(jelly.rest.sixVolume.size(), jelly.mesh.tetrahedra.size());
-  for (size_t i = 0; i < jelly.mesh.edges.size(); ++i) {
-    const auto& e = jelly.mesh.edges[i];
-    EXPECT_DOUBLE_EQ(jelly.rest.edgeLength[i], (jelly.mesh.positions[e[1]] - jelly.mesh.positions[e[0]]).norm());
+  ASSERT_EQ(jelly.rest.edges.size(), jelly.mesh.edges.size());
+  ASSERT_EQ(jelly.rest.tetrahedra.size(), jelly.mesh.tetrahedra.size());
+  std::vector<std::array<int32_t, 2>> edges;
+  for (const PositionBasedRest::Edge& edge : jelly.rest.edges) {
+    const auto& e = edge.node;
+    EXPECT_DOUBLE_EQ(edge.length, (jelly.mesh.positions[e[1]] - jelly.mesh.positions[e[0]]).norm());
+    edges.push_back(e);
   }
+  std::vector<std::array<int32_t, 2>> meshEdges(jelly.mesh.edges.begin(), jelly.mesh.edges.end());
+  std::sort(edges.begin(), edges.end());
+  std::sort(meshEdges.begin(), meshEdges.end());
+  EXPECT_EQ(edges, meshEdges);
+  std::vector<std::array<int32_t, 4>> tetrahedra;
   double volume = 0.0;
-  for (double six : jelly.rest.sixVolume) {
-    EXPECT_GT(six, 0.0);
-    volume += six / 6.0;
+  for (const PositionBasedRest::Tetrahedron& tetrahedron : jelly.rest.tetrahedra) {
+    EXPECT_GT(tetrahedron.sixVolume, 0.0);
+    volume += tetrahedron.sixVolume / 6.0;
+    tetrahedra.push_back(tetrahedron.node);
   }
+  std::vector<std::array<int32_t, 4>> meshTetrahedra(jelly.mesh.tetrahedra.begin(), jelly.mesh.tetrahedra.end());
+  std::sort(tetrahedra.begin(), tetrahedra.end());
+  std::sort(meshTetrahedra.begin(), meshTetrahedra.end());
+  EXPECT_EQ(tetrahedra, meshTetrahedra);
   const int sectors = 8;  // the generator's: a regular octagon of radius 0.1, 0.2 high
   const double octagon = 0.5 * sectors * 0.1 * 0.1 * std::sin(2 * 3.14159265358979323846 / sectors);
   EXPECT_NEAR(volume, octagon * 0.2, 1e-12);

@@ -36,10 +36,6 @@ PositionBasedRest positionBasedRest(std::span<const Vec3> restPositions, std::sp
                                     std::span<const std::array<int32_t, 4>> tetrahedra) {
   PositionBasedRest rest;
   const auto& x = restPositions;
-  rest.edgeLength.reserve(edges.size());
-  for (const auto& e : edges) rest.edgeLength.push_back((x[e[1]] - x[e[0]]).norm());
-  rest.sixVolume.reserve(tetrahedra.size());
-  for (const auto& t : tetrahedra) rest.sixVolume.push_back((x[t[1]] - x[t[0]]).dot((x[t[2]] - x[t[0]]).cross(x[t[3]] - x[t[0]])));
   ColouringScratch scratch;
   auto byColour = [&](const auto& rows, std::vector<int32_t>& order) {
     const std::vector<std::decay_t<decltype(rows[0])>> copied(rows.begin(), rows.end());
@@ -50,8 +46,17 @@ PositionBasedRest positionBasedRest(std::span<const Vec3> restPositions, std::sp
         },
         order, scratch);
   };
-  byColour(edges, rest.edgeOrder);
-  byColour(tetrahedra, rest.tetrahedronOrder);
+  std::vector<int32_t> order;
+  byColour(edges, order);
+  for (const int32_t i : order) {
+    const auto& e = edges[static_cast<size_t>(i)];
+    rest.edges.push_back({e, (x[e[1]] - x[e[0]]).norm()});
+  }
+  byColour(tetrahedra, order);
+  for (const int32_t i : order) {
+    const auto& t = tetrahedra[static_cast<size_t>(i)];
+    rest.tetrahedra.push_back({t, (x[t[1]] - x[t[0]]).dot((x[t[2]] - x[t[0]]).cross(x[t[3]] - x[t[0]]))});
+  }
   return rest;
 }
 
@@ -77,23 +82,21 @@ void positionBasedGoals(const PositionBasedBody& body, std::span<const Vec3> pre
                         std::span<const double> inverseMass, std::span<Vec3> x) {
   std::copy(predicted.begin(), predicted.end(), x.begin());
   const double k = 1.0 - std::pow(1.0 - body.stiffness, 1.0 / body.iterations);
-  const std::vector<double>& restLength = body.rest->edgeLength;
-  const std::vector<double>& restVolume = body.rest->sixVolume;
   for (int iteration = 0; iteration < body.iterations; ++iteration) {
-    for (const int32_t i : body.rest->edgeOrder) {
-      const auto& e = body.edges[i];
+    for (const PositionBasedRest::Edge& edge : body.rest->edges) {
+      const auto& e = edge.node;
       const double wi = inverseMass[e[0]], wj = inverseMass[e[1]];
       if (wi + wj == 0.0) continue;
       const Vec3 d = x[e[1]] - x[e[0]];
       const double length = d.norm();
       if (length < 1e-12) continue;
-      const Vec3 correction = k * (length - restLength[i]) / (wi + wj) * (d / length);
+      const Vec3 correction = k * (length - edge.length) / (wi + wj) * (d / length);
       x[e[0]] += wi * correction;
       x[e[1]] -= wj * correction;
     }
-    for (const int32_t i : body.rest->tetrahedronOrder) {
+    for (const PositionBasedRest::Tetrahedron& tetrahedron : body.rest->tetrahedra) {
       // C = 6V − 6V⁰ with 6V = (x₁ − x₀)·((x₂ − x₀) × (x₃ − x₀)).
-      const auto& t = body.tetrahedra[i];
+      const auto& t = tetrahedron.node;
       const Vec3 e1 = x[t[1]] - x[t[0]], e2 = x[t[2]] - x[t[0]], e3 = x[t[3]] - x[t[0]];
       const double volume = e1.dot(e2.cross(e3));
       std::array<Vec3, 4> gradient{Vec3::Zero(), e2.cross(e3), e3.cross(e1), e1.cross(e2)};
@@ -101,7 +104,7 @@ void positionBasedGoals(const PositionBasedBody& body, std::span<const Vec3> pre
       double denominator = 0.0;
       for (int n = 0; n < 4; ++n) denominator += inverseMass[t[n]] * gradient[n].squaredNorm();
       if (denominator < 1e-24) continue;
-      const double scale = -k * (volume - restVolume[i]) / denominator;
+      const double scale = -k * (volume - tetrahedron.sixVolume) / denominator;
       for (int n = 0; n < 4; ++n) x[t[n]] += scale * inverseMass[t[n]] * gradient[n];
     }
     for (const SupportPlane& plane : body.supports) {  // hard, like the contacts they stand for

@@ -43,16 +43,23 @@ struct SupportPlane {
   double minimum = 0.0;
 };
 
-// What PBD's constraints hold, computed once when the body is made: each edge's rest length
-// and each tetrahedron's rest volume times six (the signed triple product); and the order the
-// projections take them in, by colour (solver/graph_colouring.h): edges, and tetrahedra, next to
-// each other in it share no node, so the processor can overlap their projections where in the
-// mesh's order each waited on the last one's square root and division (the PBD jelly was a third
-// of the paper's jelly scene).
+// What PBD's constraints hold, computed once when the body is made: each edge with its rest
+// length and each tetrahedron with its rest volume times six (the signed triple product), in the
+// order the projections take them, by colour (solver/graph_colouring.h): edges, and tetrahedra,
+// next to each other in it share no node, so the processor can overlap their projections where
+// in the mesh's order each waited on the last one's square root and division (the PBD jelly was a
+// third of the paper's jelly scene). Kept in that order, so the projections read them in turn.
 struct PositionBasedRest {
-  std::vector<double> edgeLength;
-  std::vector<double> sixVolume;
-  std::vector<int32_t> edgeOrder, tetrahedronOrder;
+  struct Edge {
+    std::array<int32_t, 2> node;  // local indices
+    double length;
+  };
+  struct Tetrahedron {
+    std::array<int32_t, 4> node;  // local indices
+    double sixVolume;
+  };
+  std::vector<Edge> edges;
+  std::vector<Tetrahedron> tetrahedra;
 };
 PositionBasedRest positionBasedRest(std::span<const Vec3> restPositions, std::span<const std::array<int32_t, 2>> edges,
                                     std::span<const std::array<int32_t, 4>> tetrahedra);
