@@ -450,7 +450,10 @@ TEST(Viewer, DraggingTheClothPullsTheBodyItIsAnchoredTo) {
   ASSERT_TRUE(std::regex_search(output, match, line)) << output;
   std::printf("after the drag: %s\n", match.str(0).c_str());
   EXPECT_GT(std::stod(match[1]) - (-0.05), 0.1) << output;  // pulled along +x by the cloth
-  EXPECT_NEAR(std::stod(match[2]), 0.1, 0.01);                // still on the floor
+  // Still down: on the floor, or on the cloth bunched on it (a fresh-clone CI run on a loaded
+  // machine dragged the box 0.61 m, onto the folded cloth, and it rested 17 mm up; a box thrown
+  // off or sunk through the floor is off by far more).
+  EXPECT_NEAR(std::stod(match[2]), 0.1, 0.03);
 }
 
 }  // namespace
