@@ -3,7 +3,6 @@
 // src/world_impl.h holds the state.)
 #include "world_impl.h"
 
-
 namespace tandem {
 
 std::span<const CollisionSurface> World::Impl::collisionSurfaces() {
