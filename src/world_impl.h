@@ -288,8 +288,10 @@ struct World::Impl final : bullet::SolverHooks {
   // Post-stabilisation (Cline and Pai 2003): velocity-level rows leave a drift of order
   // h² v² / L (a cloth corner whipping round at 60 rad/s stretches its edges by half in a step);
   // each block projects its nodes back onto its rows with the step's own factorisation.
-  // Blocks that cannot (they hold a dynamic body) leave their edges to strain limiting.
+  // Blocks that cannot (a dynamic body touches their contacts) leave their edges to strain
+  // limiting; the bodies their anchors hold move with them.
   void projectDirectBlocks();
+  std::vector<DirectBlock::BodyMove> blockBodyMoves;  // scratch of projectDirectBlocks
 
   // Inextensible edges no block projected brought back within 1 % by position, nodes kept out
   // of the shapes they touched (solver/strain_limiting.h).

@@ -40,7 +40,14 @@ void World::Impl::projectDirectBlocks() {
   unprojected.assign(deformables.size(), 0);
   report.blockFactorisations = 0;
   for (DirectBlock& block : directBlocks) {
-    const bool projected = block.projectPositions(rows, nodes);
+    blockBodyMoves.clear();
+    const bool projected = block.projectPositions(rows, nodes, blockBodyMoves);
+    for (const DirectBlock::BodyMove& move : blockBodyMoves) {
+      const double angle = move.rotation.norm();
+      Quat orientation = bullet.orientation(move.body);
+      if (angle > 0.0) orientation = (Quat(Eigen::AngleAxisd(angle, move.rotation / angle)) * orientation).normalized();
+      bullet.setPose(move.body, bullet.position(move.body) + move.translation, orientation);
+    }
     report.blockFactorisations += block.takeFactorisationCount();  // the step's last use of the block
     if (projected) continue;
     for (const DirectBlock::NodeRange& range : block.ranges())

@@ -23,6 +23,10 @@ constexpr size_t kMaxFrictionContacts = 32;
 constexpr double kKeptFactorTolerance = 1e-4;
 // At most this many refinement steps per solve with a kept factorisation; past them, it is made afresh.
 constexpr int kMaxKeptRefinements = 2;
+// Stretch (of each edge's rest length) a block that moves bodies leaves to its rows' bias
+// (projectPositions): half the 1 % the strain-limiting passes allow, the rest for the linearised
+// solve's own error (a heavy pendulum's rope: 0.68 % at worst, with one solve per step).
+constexpr double kProjectionBand = 0.005;
 
 bool isUnbounded(double maxForce) { return std::isinf(maxForce); }
 
@@ -330,8 +334,24 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
   for (int32_t n = 0; n < m_nodeCount; ++n)
     if (m_nodeDof[n] >= 0) m_inverseMass.segment<3>(m_nodeDof[n]).setConstant(nodes.inverseMass[globalNode(n)]);
 
+  // Its projection moves the bodies its anchors hold (projectPositions) unless some body it
+  // touches moves: a contact row of the block, or any of this step's contacts between its nodes
+  // and a dynamic body (a body moved by position would drag the rope along that body's surface,
+  // which the contact holds by velocity only: the rope over the wheel's light load crept 1.5 mm/s
+  // instead of 0.4, its soak test).
+  // A block that moves bodies by position is factorised afresh in every step:
+  // its body turns the chain a little each step, and a kept factorisation refined against the
+  // current matrix passed the residual test (in velocities, over each diagonal: small where the
+  // chain's tension dominates H) while its solution kinked a heavy pendulum's rope at the body
+  // (its end node turned 0.6 m/s across the rope in one step, then the step diverged;
+  // docs/solver.md, twenty-seventh session). Such a block is a rope and a few bodies: cheap.
+  m_movesBodies = std::any_of(m_bodyDof.begin(), m_bodyDof.end(), [](int32_t dof) { return dof >= 0; }) &&
+                  std::none_of(m_rows.begin(), m_rows.end(), [](const BlockRowRef& ref) { return ref.type == RowType::Contact; }) &&
+                  std::none_of(rows.contacts.begin(), rows.contacts.end(), [&](const ContactRow& contact) {
+                    return contact.body >= 0 && rigid[contact.body].inverseMass > 0.0 && localNode(contact.node[0]) >= 0;
+                  });
   m_factorOk = factorKept;
-  factorise(true, true);
+  factorise(!m_movesBodies, true);
   // The unit responses' storage, so that a step with a kept factorisation allocates nothing: it
   // changes size only with the pattern, in a step that factorises anyway.
   if (std::any_of(m_rows.begin(), m_rows.end(), [&](const BlockRowRef& ref) {
@@ -557,11 +577,22 @@ void DirectBlock::dropReleasedEquations(ColumnBlock& x) const {
   }
 }
 
-bool DirectBlock::projectPositions(const ConstraintRows& rows, NodeArrays& nodes) {
+bool DirectBlock::projectPositions(const ConstraintRows& rows, NodeArrays& nodes, std::vector<BodyMove>& bodyMoves) {
   if (m_rows.empty() || !m_factorOk) return false;
-  // The solve would move dynamic bodies too; until they can be moved by position as well,
-  // blocks holding one are left to the velocity-level correction.
-  if (std::any_of(m_bodyDof.begin(), m_bodyDof.end(), [](int32_t dof) { return dof >= 0; })) return false;
+  // The solve moves the block's dynamic bodies too: held by anchors, they move with the nodes, and
+  // a heavy body on a light rope is put back where the rope reaches, which the rope's nodes alone
+  // cannot do (the strain-limiting passes hold a body's anchored node, so a rope between a pin and
+  // a 500 kg body swinging at 3 m/s stayed 1.66 % long). A block touching a moving body through
+  // contacts is left to the velocity-level correction and the passes (m_movesBodies, prepare).
+  if (!m_movesBodies && std::any_of(m_bodyDof.begin(), m_bodyDof.end(), [](int32_t dof) { return dof >= 0; })) return false;
+  // Where it moves bodies, an edge is brought back only to within kProjectionBand of its length,
+  // and edges inside the band keep theirs. The velocity rows, taking J at the step's start, turn
+  // kinetic energy into stretch each step (h² v² / 2L of it for a pendulum: their projection
+  // removes the centripetal part of the velocity); the rows' Baumgarte bias gives most of it back
+  // in the next steps, and a projection of the whole stretch throws it away: a free rope
+  // pendulum kept 0.914 of its energy at n = 4 instead of 0.987, 0.694 instead of 0.854 at n = 1
+  // (a point pendulum stepped the same two ways measures 0.903 and 0.696: docs/solver.md).
+  const double band = m_movesBodies ? kProjectionBand : 0.0;
   const int32_t rowCount = scalarRowCount();
   m_rhs.setZero(m_dofCount + rowCount);
   for (int32_t r = 0; r < rowCount; ++r) {
@@ -572,22 +603,31 @@ bool DirectBlock::projectPositions(const ConstraintRows& rows, NodeArrays& nodes
       m_rhs[m_dofCount + r] = -fixedPointError(nodes.position[row.node], row.target)[ref.component];
     } else if (ref.type == RowType::Inextensibility) {
       const InextensibilityRow& row = rows.inextensibility[ref.index];
-      if (row.effectiveMass != 0.0)
-        m_rhs[m_dofCount + r] =
-            -inextensibilityError(nodes.position[row.node[0]], nodes.position[row.node[1]], row.restLength);
+      if (row.effectiveMass == 0.0) continue;
+      const double error = inextensibilityError(nodes.position[row.node[0]], nodes.position[row.node[1]], row.restLength);
+      const double allowed = band * row.restLength;
+      m_rhs[m_dofCount + r] = -(error - std::clamp(error, -allowed, allowed));
     }
   }
+  if (m_rhs.tail(rowCount).isZero(0.0)) return true;  // nothing outside the band
   solveKkt(m_rhs, m_solution);
   if (!m_factorFresh) refineWithKeptFactor(m_rhs, m_solution);  // as in solve()
   // Near a singular configuration (a taut flat sheet pinned at its corners) the linearised
   // rows are nearly redundant and a small error asks for a large step: no node moves further
-  // than twice the largest error it is correcting.
-  const double largest = 2.0 * m_rhs.tail(rowCount).cwiseAbs().maxCoeff();
+  // than twice the largest error it is correcting. (Not where the block moves a body: a rope's
+  // nodes near its body move by the sum of its edges' errors, as the body does.)
+  const double largest = m_movesBodies ? INFINITY : 2.0 * m_rhs.tail(rowCount).cwiseAbs().maxCoeff();
   for (int32_t n = 0; n < m_nodeCount; ++n) {
     if (m_nodeDof[n] < 0) continue;
     Vec3 step = m_solution.segment<3>(m_nodeDof[n]);
     if (step.norm() > largest) step *= largest / step.norm();
     nodes.position[globalNode(n)] += step;
+  }
+  for (size_t b = 0; b < m_bodies.size(); ++b) {
+    if (m_bodyDof[b] < 0) continue;
+    const int k = m_bodyMotion[b].freedoms;
+    const Vec6 move = m_bodyMotion[b].basis.leftCols(k) * m_solution.segment(m_bodyDof[b], k);
+    bodyMoves.push_back({m_bodies[b], move.head<3>(), move.tail<3>()});
   }
   return true;
 }

@@ -153,9 +153,16 @@ class DirectBlock {
 
   // After integration: moves the block's nodes by Δx solving [H Jᵀ; J −E] [Δx; −μ] = [0; −C(x)]
   // with this step's factorisation (J from the start of the step), so that its fixed points and
-  // inextensible edges hold by position too; contact rows hold their points still. Returns
-  // false when it did not (no rows, no factorisation, or a dynamic body it would have to move).
-  bool projectPositions(const ConstraintRows& rows, NodeArrays& nodes);
+  // inextensible edges hold by position too; contact and anchor rows hold their points still.
+  // The dynamic bodies its anchors hold move by the same solve: their moves (translation and
+  // rotation vector, about the centre of mass) are appended to `bodyMoves` for the caller to
+  // apply. Returns false when it did not (no rows, no factorisation, or a dynamic body that a
+  // contact of the block touches).
+  struct BodyMove {
+    int32_t body;
+    Vec3 translation, rotation;
+  };
+  bool projectPositions(const ConstraintRows& rows, NodeArrays& nodes, std::vector<BodyMove>& bodyMoves);
   const std::vector<NodeRange>& ranges() const { return m_ranges; }
 
   // One exact solve of the block against the current velocities.
@@ -180,6 +187,7 @@ class DirectBlock {
 
   std::vector<int32_t> m_nodeDof;  // per node of the block: its first degree of freedom, or −1 if pinned
   std::vector<int32_t> m_bodyDof;  // per entry of m_bodies: first degree of freedom, or −1 if immovable
+  bool m_movesBodies = false;      // has some, and no contact rows: projectPositions moves them
   int32_t m_dofCount = 0;
   Eigen::VectorXd m_bias;
   Eigen::VectorXd m_compliance;  // E, per row
