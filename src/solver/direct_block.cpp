@@ -678,6 +678,7 @@ void DirectBlock::solve(ConstraintRows& rows, SolverContext& ctx, SweepStats& st
       if (releasedHere[r]) prescribed[r] = -rows.contacts[m_rows[r].index].lambdaNormal;
     m_rhs.resize(m_dofCount + rowCount);
     m_rhs.head(m_dofCount).noalias() = m_jacobianT * prescribed;
+    addReleasedFriction(rows, m_rhs);
     for (int32_t r = 0; r < rowCount; ++r)
       m_rhs[m_dofCount + r] = m_active[r] && !m_released[r] ? -(rowVelocity(rows, m_rows[r], ctx) + m_bias[r]) : 0.0;
     // One step of iterative refinement: with this step's factorisation the first solve leaves
@@ -735,6 +736,18 @@ void DirectBlock::solve(ConstraintRows& rows, SolverContext& ctx, SweepStats& st
     if (round == kMaxReleaseRounds) break;
   }
   // A released contact goes back to the PGS sweep, which may still push with it.
+  m_velocityChange.setZero(m_dofCount);
+  addReleasedFriction(rows, m_velocityChange);  // before its friction is the sweep's (below)
+  for (size_t r = m_persistentRows; r < m_rows.size(); ++r)
+    if (releasedHere[r] && rows.contacts[m_rows[r].index].frictionInBlock) {
+      ContactRow& row = rows.contacts[m_rows[r].index];
+      if (row.body >= 0) {  // the taken-back friction's share of the body's impulse, for the report
+        const Vec3 onBody = row.lambdaTangent[0] * row.tangent1 + row.lambdaTangent[1] * row.tangent2;
+        ctx.rigid[row.body].impulse += onBody;
+        ctx.rigid[row.body].angularImpulse += row.offset.cross(onBody);
+      }
+      row.lambdaTangent.setZero();
+    }
   for (size_t r = m_persistentRows; r < m_rows.size(); ++r)
     if (m_released[r]) {
       rows.contacts[m_rows[r].index].inDirectBlock = false;
@@ -749,12 +762,27 @@ void DirectBlock::solve(ConstraintRows& rows, SolverContext& ctx, SweepStats& st
   // momentum changes by exactly Jᵀ Δλ whatever the solve's rounding.
   Eigen::VectorXd& deltaLambda = m_rowImpulseChange;
   deltaLambda = -m_solution.tail(rowCount);
-  m_velocityChange.noalias() = m_jacobianT * deltaLambda;
+  m_velocityChange.noalias() += m_jacobianT * deltaLambda;
   m_velocityChange.noalias() -= m_stiffness * m_solution.head(m_dofCount);
   toVelocityChange(m_velocityChange);
   applyVelocityChange(m_velocityChange, ctx);
   addRowImpulses(rows, deltaLambda, ctx);
   for (int32_t r = 0; r < rowCount; ++r) stats.add(deltaLambda[r]);
+}
+
+// A contact let go in this solve whose friction the block solved takes that friction back in the
+// block's metric, as a known load with its normal impulse: the block's friction pass moved the
+// whole block with it, and the sweep, which owns the contact's friction from here on, would take
+// it back on the contact's own nodes. On a 0.3 kg weight hung from one face of a 0.04 kg flag
+// that was 0.55 N s off a 0.4 g node: 114 m/s in one sweep, the weight thrown 2 m
+// (scenes/anchors.json; docs/solver.md, twenty-eighth session).
+void DirectBlock::addReleasedFriction(const ConstraintRows& rows, Eigen::VectorXd& onDofs) const {
+  for (size_t r = m_persistentRows; r < m_rows.size(); ++r) {
+    const ContactRow& row = rows.contacts[m_rows[r].index];
+    if (!m_releasedHere[r] || !row.frictionInBlock || row.lambdaTangent.isZero()) continue;
+    const Vec3 takenBack = -(row.lambdaTangent[0] * row.tangent1 + row.lambdaTangent[1] * row.tangent2);
+    visitImpulseOnDofs(row, takenBack, [&](int32_t dof, const auto& entries) { onDofs.segment(dof, entries.size()) += entries; });
+  }
 }
 
 // Impulses on the block's degrees of freedom turned, in place, into the velocity changes they

@@ -54,6 +54,9 @@
 // that no contact of the block is left pulling). A surface's contacts with still shapes keep
 // their friction in the PGS sweep: applied to a cloth draped over a pyramid, the block's
 // friction pressed nodes 2.6 mm past their thickness into the shape (Shapes/ClothDrop/hull).
+// A contact the block lets go takes its friction back the way it was given, through the block (a
+// known load, with its normal impulse), before the sweep owns it: taken back on its own light
+// nodes, it threw a weight hung from a flag's face (addReleasedFriction).
 //
 // The KKT matrix is symmetric quasi-definite, so a sparse LDLᵀ without pivoting (AMD ordering)
 // factorises it; each sweep is one pair of triangular solves (plus a small dense solve for the
@@ -295,6 +298,8 @@ class DirectBlock {
 
   void computeFrictionResponses(const ConstraintRows& rows);
   void addRowImpulses(ConstraintRows& rows, const Eigen::VectorXd& deltaLambda, SolverContext& ctx) const;
+  // −λₜ Jₜᵀ of each contact let go in this solve whose friction the block solved, added to `onDofs`.
+  void addReleasedFriction(const ConstraintRows& rows, Eigen::VectorXd& onDofs) const;
   void toVelocityChange(Eigen::VectorXd& impulses) const;
   void applyVelocityChange(const Eigen::VectorXd& change, SolverContext& ctx) const;
   // Jᵀ of a row along `axis` written into a column of `target` (zero there before).
