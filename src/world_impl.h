@@ -292,6 +292,7 @@ struct World::Impl final : bullet::SolverHooks {
   // limiting; the bodies their anchors hold move with them.
   void projectDirectBlocks();
   std::vector<DirectBlock::BodyMove> blockBodyMoves;  // scratch of projectDirectBlocks
+  std::vector<RigidPose> blockPoses;                  // and the bodies' poses it starts from
 
   // Inextensible edges no block projected brought back within 1 % by position, nodes kept out
   // of the shapes they touched (solver/strain_limiting.h).

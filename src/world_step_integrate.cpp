@@ -39,9 +39,11 @@ void World::Impl::pushOutOfContacts() {
 void World::Impl::projectDirectBlocks() {
   unprojected.assign(deformables.size(), 0);
   report.blockFactorisations = 0;
+  blockPoses.resize(static_cast<size_t>(bullet.rigidBodyCount()));
+  for (int b = 0; b < bullet.rigidBodyCount(); ++b) blockPoses[b] = {bullet.position(b), bullet.orientation(b)};
   for (DirectBlock& block : directBlocks) {
     blockBodyMoves.clear();
-    const bool projected = block.projectPositions(rows, nodes, blockBodyMoves);
+    const bool projected = block.projectPositions(rows, nodes, blockPoses, blockBodyMoves);
     for (const DirectBlock::BodyMove& move : blockBodyMoves) {
       const double angle = move.rotation.norm();
       Quat orientation = bullet.orientation(move.body);

@@ -577,7 +577,8 @@ void DirectBlock::dropReleasedEquations(ColumnBlock& x) const {
   }
 }
 
-bool DirectBlock::projectPositions(const ConstraintRows& rows, NodeArrays& nodes, std::vector<BodyMove>& bodyMoves) {
+bool DirectBlock::projectPositions(const ConstraintRows& rows, NodeArrays& nodes, std::span<const RigidPose> poses,
+                                   std::vector<BodyMove>& bodyMoves) {
   if (m_rows.empty() || !m_factorOk) return false;
   // The solve moves the block's dynamic bodies too: held by anchors, they move with the nodes, and
   // a heavy body on a light rope is put back where the rope reaches, which the rope's nodes alone
@@ -607,6 +608,10 @@ bool DirectBlock::projectPositions(const ConstraintRows& rows, NodeArrays& nodes
       const double error = inextensibilityError(nodes.position[row.node[0]], nodes.position[row.node[1]], row.restLength);
       const double allowed = band * row.restLength;
       m_rhs[m_dofCount + r] = -(error - std::clamp(error, -allowed, allowed));
+    } else if (ref.type == RowType::Anchor) {
+      const AnchorRow& row = rows.anchors[ref.index];
+      const RigidPose& pose = poses[row.body];
+      m_rhs[m_dofCount + r] = -anchorError(row, nodes.position, pose.centerOfMass, pose.orientation)[ref.component];
     }
   }
   if (m_rhs.tail(rowCount).isZero(0.0)) return true;  // nothing outside the band

@@ -97,6 +97,7 @@
 
 #include <tandem/report.h>
 
+#include "collision/contact_motion.h"
 #include "solver/constraint_rows.h"
 #include "solver/sparse_assembly.h"
 
@@ -156,7 +157,8 @@ class DirectBlock {
 
   // After integration: moves the block's nodes by Δx solving [H Jᵀ; J −E] [Δx; −μ] = [0; −C(x)]
   // with this step's factorisation (J from the start of the step), so that its fixed points and
-  // inextensible edges hold by position too; contact and anchor rows hold their points still.
+  // inextensible edges hold by position too, and its anchors close (`poses`: every rigid body's
+  // pose now, for their gaps); contact rows hold their points still.
   // The dynamic bodies its anchors hold move by the same solve: their moves (translation and
   // rotation vector, about the centre of mass) are appended to `bodyMoves` for the caller to
   // apply. Returns false when it did not (no rows, no factorisation, or a dynamic body that a
@@ -165,7 +167,8 @@ class DirectBlock {
     int32_t body;
     Vec3 translation, rotation;
   };
-  bool projectPositions(const ConstraintRows& rows, NodeArrays& nodes, std::vector<BodyMove>& bodyMoves);
+  bool projectPositions(const ConstraintRows& rows, NodeArrays& nodes, std::span<const RigidPose> poses,
+                        std::vector<BodyMove>& bodyMoves);
   const std::vector<NodeRange>& ranges() const { return m_ranges; }
 
   // One exact solve of the block against the current velocities.
