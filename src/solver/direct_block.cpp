@@ -779,8 +779,8 @@ void DirectBlock::solve(ConstraintRows& rows, SolverContext& ctx, SweepStats& st
 // block's metric, as a known load with its normal impulse: the block's friction pass moved the
 // whole block with it, and the sweep, which owns the contact's friction from here on, would take
 // it back on the contact's own nodes. On a 0.3 kg weight hung from one face of a 0.04 kg flag
-// that was 0.55 N s off a 0.4 g node: 114 m/s in one sweep, the weight thrown 2 m
-// (scenes/anchors.json; docs/solver.md, twenty-eighth session).
+// that was 0.55 N s off a 0.4 g node: 114 m/s in one sweep, the weight thrown up at 40 m/s
+// (tests/data/flag_weight.json; docs/solver.md, twenty-eighth session).
 void DirectBlock::addReleasedFriction(const ConstraintRows& rows, Eigen::VectorXd& onDofs) const {
   for (size_t r = m_persistentRows; r < m_rows.size(); ++r) {
     const ContactRow& row = rows.contacts[m_rows[r].index];

@@ -193,7 +193,7 @@ class DirectBlock {
 
   std::vector<int32_t> m_nodeDof;  // per node of the block: its first degree of freedom, or −1 if pinned
   std::vector<int32_t> m_bodyDof;  // per entry of m_bodies: first degree of freedom, or −1 if immovable
-  bool m_movesBodies = false;      // has some, and no contact rows: projectPositions moves them
+  bool m_movesBodies = false;      // has some, none in a contact with its nodes: projectPositions moves them
   int32_t m_dofCount = 0;
   Eigen::VectorXd m_bias;
   Eigen::VectorXd m_compliance;  // E, per row
