@@ -157,8 +157,9 @@ class DirectBlock {
 
   // After integration: moves the block's nodes by Δx solving [H Jᵀ; J −E] [Δx; −μ] = [0; −C(x)]
   // with this step's factorisation (J from the start of the step), so that its fixed points and
-  // inextensible edges hold by position too, and its anchors close (`poses`: every rigid body's
-  // pose now, for their gaps); contact rows hold their points still.
+  // inextensible edges hold by position too, and a block of ropes' anchors close (`poses`: every
+  // rigid body's pose now, for their gaps); contact rows, and a surface's anchors, hold their
+  // points as they are.
   // The dynamic bodies its anchors hold move by the same solve: their moves (translation and
   // rotation vector, about the centre of mass) are appended to `bodyMoves` for the caller to
   // apply. Returns false when it did not (no rows, no factorisation, or a dynamic body that a
