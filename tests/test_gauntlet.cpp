@@ -6,6 +6,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+#include <string>
+
 namespace tandem::gauntlet {
 namespace {
 
@@ -45,8 +48,12 @@ TEST(Gauntlet, FreeSwingLosesNoEnergyToTheBlocksPositionProjection) {
 // projected together in the strain-limiting passes (docs/solver.md, twentieth session), 1.1 %
 // since.
 TEST(Gauntlet, PaperClothOnSphereStaysWithinItsStretchLimit) { expectPasses(clothOnSphere("cloth_sphere.json", 3.0)); }
+// Under the sanitizers (TANDEM_SHORT_TESTS=1) its first 0.6 s only, the impact and the first
+// drape (first contact at 0.12 s): the whole 2 s took 400 of the sanitizer suite's 1,500 s.
 TEST(Gauntlet, WiderClothOnSphereStaysWithinItsStretchLimit) {
-  expectPasses(clothOnSphere("gauntlet/cloth_sphere_101.json", 2.0));
+  const char* shortTests = std::getenv("TANDEM_SHORT_TESTS");
+  const bool shortRun = shortTests && std::string(shortTests) == "1";
+  expectPasses(clothOnSphere("gauntlet/cloth_sphere_101.json", shortRun ? 0.6 : 2.0));
 }
 // 3.5 % at 201 × 201 (8.2 % before).
 TEST(Gauntlet, DISABLED_LargeClothOnSphereStaysWithinItsStretchLimit) {
