@@ -124,7 +124,7 @@ void World::Impl::afterSetup() {
     rows.warmStart(ctx);
   else
     rows.clearImpulses();
-  for (const DirectBlock& block : directBlocks) block.clearImpulses(rows);
+  for (DirectBlock& block : directBlocks) block.startImpulses(rows, ctx);
   bullet.storeRigidVelocities(rigid);
 }
 

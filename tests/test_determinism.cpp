@@ -42,7 +42,7 @@ void PrintTo(const Golden& golden, std::ostream* out) { *out << golden.file << "
 
 // clang-format off
 constexpr Golden kGolden[] = {
-    {"rope_wheel.json", 30, 0xe92083332fb057feULL, 150, 0x97aa562e0968f75eULL},  // released contacts take their block friction back in the block
+    {"rope_wheel.json", 30, 0x41132a168dfdca6eULL, 150, 0x94b0972a4c982dccULL},  // a block warm starts its anchors to dynamic bodies
     {"cloth_sphere.json", 15, 0xadc39e94eb15cc42ULL, 60, 0xff555b5bd7a75b93ULL},  // the swept edges' coarse levels kept while they fit
     {"jelly_dish.json", 9, 0xeecbfc4a07857f48ULL, 60, 0x37b996b5c4492375ULL},  // the implicit solve preconditioned by 3 x 3 node blocks
 };

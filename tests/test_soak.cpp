@@ -279,7 +279,10 @@ const SoakCase kCases[] = {
     // 0.23 mm/s on main before it).
     // And when Bullet's contacts came to be warm started with their whole impulses (heavy / light /
     // rope 0.66 / 0.50 / 0.092 mm/s before).
-    {"rope_wheel.json", 20.0, 6.0, {{"heavy", 0.47e-3}, {"light", 0.41e-3}, {"wheel", 0.029e-3}, {"rope", 0.113e-3}}},
+    // And when a block's anchors to dynamic bodies came to be warm started (heavy / light / rope
+    // 0.41 / 0.33 / 0.14 mm/s before): the landed teapot no longer rocks on the floor; the light
+    // one still swings.
+    {"rope_wheel.json", 20.0, 6.0, {{"heavy", 0.10e-3}, {"light", 0.14e-3}, {"wheel", 0.029e-3}, {"rope", 0.030e-3}}},
     // cloth_sphere re-measured when the swept edges got their geometric stiffness (0.53 mm/s on
     // main before it; the nodes' own drift 12.5 → 4.3 mm on average from 8 s to 20 s).
     // Since the swept edges are solved together (solver/swept_edge_solve.h) it stays put: 0.0095

@@ -83,8 +83,9 @@ struct ConstraintRows {
       if (row.active) prepareGrab(row, nodes, rigid, timeStep);
   }
 
-  // Rows in a direct block are not warm started: the block is exact in one sweep, and its
-  // response to an impulse (H⁻¹ Jᵀ) is not the M⁻¹ Jᵀ a warm start would apply.
+  // Rows in a direct block are not warm started here: the block is exact in one sweep, and its
+  // response to an impulse (H⁻¹ Jᵀ) is not the M⁻¹ Jᵀ a warm start would apply. Its anchors to
+  // dynamic bodies are, by the block itself (DirectBlock::startImpulses).
   void warmStart(SolverContext& ctx) const {
     for (const FixedPointRow& row : fixedPoints)
       if (!row.inDirectBlock) warmStartFixedPoint(row, ctx);

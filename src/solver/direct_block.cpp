@@ -643,11 +643,32 @@ bool DirectBlock::projectPositions(const ConstraintRows& rows, NodeArrays& nodes
   return true;
 }
 
-void DirectBlock::clearImpulses(ConstraintRows& rows) const {
+// The anchors that hold a dynamic body keep last step's impulse: its body's share is applied now,
+// before Bullet's first iteration, and its nodes' share waits for the block's first solve as a
+// known load (H Δv = Jᵀ Δλ + f: their response is the block's, geometric stiffness included, not
+// m⁻¹). Every other row of the block starts from zero, as the block is exact in one sweep.
+void DirectBlock::startImpulses(ConstraintRows& rows, SolverContext& ctx) {
+  m_pendingLoad.setZero(m_dofCount);
+  m_loadPending = false;
   for (const BlockRowRef& ref : m_rows) {
     switch (ref.type) {
       case RowType::FixedPoint: rows.fixedPoints[ref.index].lambda[ref.component] = 0.0; break;
-      case RowType::Anchor: rows.anchors[ref.index].lambda[ref.component] = 0.0; break;
+      case RowType::Anchor: {
+        AnchorRow& row = rows.anchors[ref.index];
+        const size_t b = static_cast<size_t>(std::find(m_bodies.begin(), m_bodies.end(), row.body) - m_bodies.begin());
+        if (!m_factorOk || m_bodyDof[b] < 0) {
+          row.lambda[ref.component] = 0.0;
+          break;
+        }
+        const Vec3 impulse = row.lambda[ref.component] * Vec3::Unit(ref.component);
+        ctx.rigid[row.body].applyImpulse(-impulse, row.offset);
+        for (int k = 0; k < 4; ++k) {
+          const int32_t dof = row.weight[k] != 0.0 ? m_nodeDof[localNode(row.node[k])] : -1;
+          if (dof >= 0) m_pendingLoad.segment<3>(dof) += row.weight[k] * impulse;
+        }
+        m_loadPending = true;
+        break;
+      }
       case RowType::Inextensibility: rows.inextensibility[ref.index].lambda = 0.0; break;
       case RowType::Contact: rows.contacts[ref.index].lambdaNormal = 0.0; break;
       default: break;
@@ -675,7 +696,11 @@ double DirectBlock::rowVelocity(const ConstraintRows& rows, const BlockRowRef& r
 }
 
 void DirectBlock::solve(ConstraintRows& rows, SolverContext& ctx, SweepStats& stats) {
-  if (m_rows.empty() || !m_factorOk) return;
+  if (m_rows.empty()) return;
+  if (!m_factorOk) {  // the warm start's load still reaches the nodes, each by its own mass
+    applyPendingLoad(ctx);
+    return;
+  }
   const int32_t rowCount = scalarRowCount();
   // Active set over the contacts: solve; a contact that would end up pulling is released (its
   // impulse so far taken back as a known load on the block) and the block solved again.
@@ -692,6 +717,8 @@ void DirectBlock::solve(ConstraintRows& rows, SolverContext& ctx, SweepStats& st
     addReleasedFriction(rows, m_rhs);
     for (int32_t r = 0; r < rowCount; ++r)
       m_rhs[m_dofCount + r] = m_active[r] && !m_released[r] ? -(rowVelocity(rows, m_rows[r], ctx) + m_bias[r]) : 0.0;
+    const double rhsScale = !m_factorFresh && round == 0 ? scaledNorm(m_rhs) : 0.0;  // the load is known: not in it
+    if (m_loadPending) m_rhs.head(m_dofCount) += m_pendingLoad;
     // One step of iterative refinement: with this step's factorisation the first solve leaves
     // J(v + Δv) + b = E y, a residual of the compliance alone, and solving for it again removes
     // all but O(ε²) of it; with a kept one, the change of the matrix since as well (the header).
@@ -712,7 +739,7 @@ void DirectBlock::solve(ConstraintRows& rows, SolverContext& ctx, SweepStats& st
       residual(m_rhs, m_solution, m_residual);
       // Measured against the step's largest right-hand side so far: a later sweep's is the small
       // error the sweeps in between left, and a residual small for the step is small enough.
-      m_stepRhsScale = std::max(m_stepRhsScale, scaledNorm(m_rhs));
+      m_stepRhsScale = std::max(m_stepRhsScale, rhsScale);
       const double tolerance = kKeptFactorTolerance * m_stepRhsScale;
       // Still short: a second refinement step in each solve from here on (one solve; a
       // factorisation of the jelly dish's block costs about forty), else a new factorisation.
@@ -728,7 +755,10 @@ void DirectBlock::solve(ConstraintRows& rows, SolverContext& ctx, SweepStats& st
         // Too far from this step's matrix: factorised afresh (kept next step only if no contact
         // has been let go yet) and solved again.
         factorise(false, std::none_of(m_released.begin(), m_released.end(), [](bool released) { return released; }));
-        if (!m_factorOk) return;
+        if (!m_factorOk) {
+          applyPendingLoad(ctx);
+          return;
+        }
         refinedSolve();
       }
     }
@@ -748,6 +778,8 @@ void DirectBlock::solve(ConstraintRows& rows, SolverContext& ctx, SweepStats& st
   }
   // A released contact goes back to the PGS sweep, which may still push with it.
   m_velocityChange.setZero(m_dofCount);
+  if (m_loadPending) m_velocityChange += m_pendingLoad;
+  m_loadPending = false;
   addReleasedFriction(rows, m_velocityChange);  // before its friction is the sweep's (below)
   for (size_t r = m_persistentRows; r < m_rows.size(); ++r)
     if (releasedHere[r] && rows.contacts[m_rows[r].index].frictionInBlock) {
@@ -794,6 +826,14 @@ void DirectBlock::addReleasedFriction(const ConstraintRows& rows, Eigen::VectorX
     const Vec3 takenBack = -(row.lambdaTangent[0] * row.tangent1 + row.lambdaTangent[1] * row.tangent2);
     visitImpulseOnDofs(row, takenBack, [&](int32_t dof, const auto& entries) { onDofs.segment(dof, entries.size()) += entries; });
   }
+}
+
+void DirectBlock::applyPendingLoad(SolverContext& ctx) {
+  if (!m_loadPending) return;
+  m_velocityChange = m_pendingLoad;
+  toVelocityChange(m_velocityChange);
+  applyVelocityChange(m_velocityChange, ctx);
+  m_loadPending = false;
 }
 
 // Impulses on the block's degrees of freedom turned, in place, into the velocity changes they

@@ -58,6 +58,26 @@
 // known load, with its normal impulse), before the sweep owns it: taken back on its own light
 // nodes, it threw a weight hung from a flag's face (addReleasedFriction).
 //
+// Warm start of the anchors to dynamic bodies. Each of K iterations is one Bullet iteration and
+// then one sweep, so a body that both a block and Bullet's contacts hold is held in turns: a
+// teapot standing on the floor held up at its knob by a rope (rope_wheel.json once the heavy one
+// has landed: the rope carries 9.2 of its 12.75 N). With the block's rows starting every step at
+// zero, Bullet's first iteration found the teapot unheld and its floor contacts took its whole
+// weight, the block then pulled 9.2 N back off them, and the four turns never settled how the
+// contacts share what is left: the teapot rocked on two of its contact points with an angular
+// velocity changing sign every step (0.070 rad/s on average, walking 12 mm in 14 s; 0.002 rad/s
+// at K = 32). So an anchor to a dynamic body keeps last step's impulse λ₀ (startImpulses): the
+// body's share −λ₀ is applied before Bullet's first iteration, and the nodes' share Jₙᵀ λ₀ waits
+// for the block's first solve as a known load f, H Δv = Jᵀ Δλ + f, so that the nodes answer it as
+// the block does (geometric stiffness included; by m⁻¹ the 0.2 g nodes at a 1 kg body's knob took
+// 100 m/s and the rope diverged). The block being exact, its answer is the same from either
+// start (the Atwood machine's bodies' velocities agree to 10⁻⁴ with warm starting on and off):
+// only the turns with Bullet change (the teapot: 0.011 rad/s, 1 mm in 14 s;
+// PaperScenes.RopeWheelLandedTeapotStandsStill). The load is not part of the scale the kept
+// factorisation's residual is judged against (below): over a 0.2 g node's diagonal it reads as
+// hundreds of m/s, and a tolerance of 10⁻⁴ of that let the kept factorisation release 17 of the
+// Atwood machine's contacts in one sweep.
+//
 // The KKT matrix is symmetric quasi-definite, so a sparse LDLᵀ without pivoting (AMD ordering)
 // factorises it; each sweep is one pair of triangular solves (plus a small dense solve for the
 // contacts let go, which drops their equations without refactorising, up to 32 of them) and
@@ -152,8 +172,9 @@ class DirectBlock {
   void prepare(const ConstraintRows& rows, const NodeArrays& nodes, std::span<const RigidSolverState> rigid,
                double timeStep, std::span<const NodePairStiffness> elastic);
 
-  // Starts the block's rows from zero impulse for this step (after prepare has read λ).
-  void clearImpulses(ConstraintRows& rows) const;
+  // Starts the block's rows for this step (after prepare has read λ): from zero, except its
+  // anchors to dynamic bodies, which keep last step's impulse (the header's "Warm start").
+  void startImpulses(ConstraintRows& rows, SolverContext& ctx);
 
   // After integration: moves the block's nodes by Δx solving [H Jᵀ; J −E] [Δx; −μ] = [0; −C(x)]
   // with this step's factorisation (J from the start of the step), so that its fixed points and
@@ -253,6 +274,9 @@ class DirectBlock {
   std::vector<bool> m_released;  // contacts let go this step
   std::vector<char> m_releasedHere;     // scratch of solve(): let go in this solve
   Eigen::VectorXd m_prescribed;         // scratch of solve(): their Δλ = −λ so far
+  Eigen::VectorXd m_pendingLoad;       // the anchors' warm start on their nodes, until the first solve
+  bool m_loadPending = false;
+  void applyPendingLoad(SolverContext& ctx);  // by m⁻¹, when there is no factorisation to solve with
   std::vector<int32_t> m_releasedNow;   // scratch of solve(): let go in this round
   std::vector<Eigen::Index> m_releasedRows;  // KKT rows let go since the last factorisation
   Eigen::MatrixXd m_releasedColumns;  // A⁻¹ e_r for each of them: its first m_releasedRows.size() columns
