@@ -25,6 +25,8 @@
 #include <string>
 #include <vector>
 
+#include "short_tests.h"
+
 namespace tandem {
 namespace {
 
@@ -47,11 +49,6 @@ constexpr Golden kGolden[] = {
     {"jelly_dish.json", 9, 0xeecbfc4a07857f48ULL, 60, 0x37b996b5c4492375ULL},  // the implicit solve preconditioned by 3 x 3 node blocks
 };
 // clang-format on
-
-bool shortRun() {
-  const char* text = std::getenv("TANDEM_SHORT_TESTS");
-  return text != nullptr && std::string(text) == "1";
-}
 
 class StateHash {
  public:
@@ -142,17 +139,17 @@ class GoldenScene : public testing::TestWithParam<Golden> {};
 TEST_P(GoldenScene, GoldenHashAfterFixedSteps) {
   const Golden& golden = GetParam();
   std::vector<int> checkpoints{golden.shortSteps};
-  if (!shortRun()) checkpoints.push_back(golden.steps);
+  if (!shortTests()) checkpoints.push_back(golden.steps);
   const std::vector<uint64_t> hashes = runAndHash(golden.file, checkpoints);
   ASSERT_EQ(hashes.size(), checkpoints.size()) << golden.file << ": a step failed";
-  const uint64_t fullHash = shortRun() ? 0 : hashes[1];
+  const uint64_t fullHash = shortTests() ? 0 : hashes[1];
   const std::string line = "{\"" + std::string(golden.file) + "\", " + std::to_string(golden.shortSteps) + ", 0x" +
                            hexOf(hashes[0]) + "ULL, " + std::to_string(golden.steps) + ", 0x" +
-                           (shortRun() ? hexOf(golden.hash) : hexOf(fullHash)) + "ULL},";
+                           (shortTests() ? hexOf(golden.hash) : hexOf(fullHash)) + "ULL},";
   EXPECT_EQ(hashes[0], golden.shortHash) << golden.file << " after " << golden.shortSteps
                                          << " steps: state hash differs. If the change is meant, the line for "
                                          << "kGolden in tests/test_determinism.cpp is\n    " << line;
-  if (!shortRun()) {
+  if (!shortTests()) {
     EXPECT_EQ(fullHash, golden.hash) << golden.file << " after " << golden.steps
                                      << " steps: state hash differs. If the change is meant, the line for "
                                      << "kGolden in tests/test_determinism.cpp is\n    " << line;
@@ -163,7 +160,7 @@ TEST_P(GoldenScene, GoldenHashAfterFixedSteps) {
 // addresses, uninitialised memory or state left over between worlds).
 TEST_P(GoldenScene, SameBitsTwiceInOneProcess) {
   const Golden& golden = GetParam();
-  const int steps = (shortRun() ? golden.shortSteps : golden.steps) / 3;
+  const int steps = (shortTests() ? golden.shortSteps : golden.steps) / 3;
   EXPECT_EQ(runAndHash(golden.file, steps), runAndHash(golden.file, steps)) << golden.file;
 }
 

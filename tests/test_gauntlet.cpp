@@ -9,6 +9,8 @@
 #include <cstdlib>
 #include <string>
 
+#include "short_tests.h"
+
 namespace tandem::gauntlet {
 namespace {
 
@@ -51,9 +53,7 @@ TEST(Gauntlet, PaperClothOnSphereStaysWithinItsStretchLimit) { expectPasses(clot
 // Under the sanitizers (TANDEM_SHORT_TESTS=1) its first 0.6 s only, the impact and the first
 // drape (first contact at 0.12 s): the whole 2 s took 400 of the sanitizer suite's 1,500 s.
 TEST(Gauntlet, WiderClothOnSphereStaysWithinItsStretchLimit) {
-  const char* shortTests = std::getenv("TANDEM_SHORT_TESTS");
-  const bool shortRun = shortTests && std::string(shortTests) == "1";
-  expectPasses(clothOnSphere("gauntlet/cloth_sphere_101.json", shortRun ? 0.6 : 2.0));
+  expectPasses(clothOnSphere("gauntlet/cloth_sphere_101.json", shortTests() ? 0.6 : 2.0));
 }
 // 3.5 % at 201 × 201 (8.2 % before).
 TEST(Gauntlet, DISABLED_LargeClothOnSphereStaysWithinItsStretchLimit) {

@@ -14,6 +14,8 @@
 #include <random>
 #include <string>
 
+#include "short_tests.h"
+
 namespace tandem {
 namespace {
 
@@ -638,7 +640,7 @@ INSTANTIATE_TEST_SUITE_P(Paradigms, JellyOnSlope,
 // rocked and slid over the jellies at 0.38 mm/s. Blocks touching one dynamic body are one block
 // now (World::Impl::buildDirectBlocks): 0.03 mm/s. (Under the sanitizers, 10 steps, no creep check.)
 TEST(Paradigms, BarAcrossTwoImplicitJelliesStaysPut) {
-  const bool shortRun = std::getenv("TANDEM_SHORT_TESTS") && std::string(std::getenv("TANDEM_SHORT_TESTS")) == "1";
+  const bool shortRun = shortTests();
   World world;
   addGround(world);
   for (const bool fem : {false, true}) {

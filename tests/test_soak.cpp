@@ -23,6 +23,8 @@
 #include <string>
 #include <vector>
 
+#include "short_tests.h"
+
 namespace tandem {
 namespace {
 
@@ -51,10 +53,6 @@ constexpr double kRegressionFloor = 1e-5;  // m/s: 0.01 mm/s, below which creep 
 double envSeconds(const char* name) {
   const char* text = std::getenv(name);
   return text ? std::atof(text) : 0.0;
-}
-bool shortRun() {
-  const char* text = std::getenv("TANDEM_SHORT_TESTS");
-  return text && std::string(text) == "1";
 }
 bool finite(const Vec3& v) { return v.allFinite(); }
 
@@ -138,7 +136,7 @@ struct SoakMeasures {
 void runSoak(const SoakCase& soak, SoakMeasures& out) {
   double seconds = soak.seconds;
   if (envSeconds("TANDEM_SOAK_SECONDS") > 0) seconds = envSeconds("TANDEM_SOAK_SECONDS");
-  if (shortRun()) seconds = std::min(seconds, 1.0);  // the jelly scene: about 100 s under ASan
+  if (shortTests()) seconds = std::min(seconds, 1.0);  // the jelly scene: about 100 s under ASan
   out.seconds = seconds;
   out.creepMeasured = seconds >= soak.settle + 2.0;
 

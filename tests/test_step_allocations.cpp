@@ -19,6 +19,8 @@
 #include <new>
 #include <string>
 
+#include "short_tests.h"
+
 namespace {
 std::atomic<long> g_allocations{0};
 }  // namespace
@@ -193,8 +195,7 @@ TEST(StepAllocations, ThePapersJellySceneAllocatesNothingOnceSettled) {
   // Under the sanitizers (TANDEM_SHORT_TESTS=1, scripts/sanitize.sh) its 220 steps took 257 s;
   // what it counts does not depend on them, and the jelly scene's memory is checked there by the
   // paper-scene tests.
-  if (const char* text = std::getenv("TANDEM_SHORT_TESTS"); text && std::string(text) == "1")
-    GTEST_SKIP() << "long under the sanitizers; the Release suite runs it";
+  if (shortTests()) GTEST_SKIP() << "long under the sanitizers; the Release suite runs it";
   Result<Scene> scene = loadScene(TANDEM_SOURCE_DIR "/scenes/jelly_dish.json");
   ASSERT_TRUE(scene.ok()) << scene.message();
   World world;
