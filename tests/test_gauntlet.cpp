@@ -49,9 +49,13 @@ TEST(Gauntlet, FreeSwingLosesNoEnergyToTheBlocksPositionProjection) {
 // The paper's 51 × 51 cloth and one of 101 × 101: 2.6 % and 4.4 % before their sheets' edges were
 // projected together in the strain-limiting passes (docs/solver.md, twentieth session), 1.1 %
 // since.
-TEST(Gauntlet, PaperClothOnSphereStaysWithinItsStretchLimit) { expectPasses(clothOnSphere("cloth_sphere.json", 3.0)); }
-// Under the sanitizers (TANDEM_SHORT_TESTS=1) its first 0.6 s only, the impact and the first
-// drape (first contact at 0.12 s): the whole 2 s took 400 of the sanitizer suite's 1,500 s.
+// Under the sanitizers (TANDEM_SHORT_TESTS=1) each cloth runs its impact and first drape only:
+// the paper's 51 × 51 its first 1.2 s (first contact at 0.38 s; its 3 s took 85 s there), the
+// 101 × 101 its first 0.6 s (first contact at 0.12 s; its 2 s took 400 of the sanitizer suite's
+// 1,500 s).
+TEST(Gauntlet, PaperClothOnSphereStaysWithinItsStretchLimit) {
+  expectPasses(clothOnSphere("cloth_sphere.json", shortTests() ? 1.2 : 3.0));
+}
 TEST(Gauntlet, WiderClothOnSphereStaysWithinItsStretchLimit) {
   expectPasses(clothOnSphere("gauntlet/cloth_sphere_101.json", shortTests() ? 0.6 : 2.0));
 }
