@@ -3,13 +3,9 @@
 // yet are DISABLED_, with what they measure today in docs/solver.md (run them with
 // --gtest_also_run_disabled_tests, or all settings with build/bench/gauntlet_study).
 #include "gauntlet.h"
+#include "short_tests.h"
 
 #include <gtest/gtest.h>
-
-#include <cstdlib>
-#include <string>
-
-#include "short_tests.h"
 
 namespace tandem::gauntlet {
 namespace {

@@ -48,6 +48,10 @@ DirectBlock::DirectBlock(std::vector<NodeRange> ranges) : m_ranges(std::move(ran
   for (const NodeRange& range : m_ranges) m_nodeCount += range.count;
 }
 
+size_t DirectBlock::blockBody(int32_t body) const {
+  return static_cast<size_t>(std::find(m_bodies.begin(), m_bodies.end(), body) - m_bodies.begin());
+}
+
 int32_t DirectBlock::localNode(int32_t node) const {
   int32_t offset = 0;
   for (const NodeRange& range : m_ranges) {
@@ -192,7 +196,6 @@ void DirectBlock::prepare(const ConstraintRows& rows, const NodeArrays& nodes,
     m_dofCount += motion.freedoms;
   }
   auto nodeDof = [&](int32_t node) { return m_nodeDof[localNode(node)]; };
-  auto blockBody = [&](int32_t body) { return static_cast<size_t>(std::find(m_bodies.begin(), m_bodies.end(), body) - m_bodies.begin()); };
 
   const int32_t rowCount = scalarRowCount();
   // The KKT matrix's entries, built in place (the vectors keep their capacity from step to step).
@@ -655,7 +658,7 @@ void DirectBlock::startImpulses(ConstraintRows& rows, SolverContext& ctx) {
       case RowType::FixedPoint: rows.fixedPoints[ref.index].lambda[ref.component] = 0.0; break;
       case RowType::Anchor: {
         AnchorRow& row = rows.anchors[ref.index];
-        const size_t b = static_cast<size_t>(std::find(m_bodies.begin(), m_bodies.end(), row.body) - m_bodies.begin());
+        const size_t b = blockBody(row.body);
         if (!m_factorOk || m_bodyDof[b] < 0) {
           row.lambda[ref.component] = 0.0;
           break;
@@ -904,12 +907,12 @@ void DirectBlock::visitImpulseOnDofs(const ContactRow& row, const Vec3& axis, Vi
     if (row.coefficient[k] != 0.0 && local >= 0 && m_nodeDof[local] >= 0)
       visit(m_nodeDof[local], Vec3(row.coefficient[k] * axis));
   }
-  const auto body = std::find(m_bodies.begin(), m_bodies.end(), row.body);
-  if (row.body >= 0 && body != m_bodies.end() && m_bodyDof[body - m_bodies.begin()] >= 0) {
-    const BodyMotion& motion = m_bodyMotion[static_cast<size_t>(body - m_bodies.begin())];
+  const size_t body = blockBody(row.body);
+  if (row.body >= 0 && body < m_bodies.size() && m_bodyDof[body] >= 0) {
+    const BodyMotion& motion = m_bodyMotion[body];
     const Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1> generalised =
         motion.generalisedImpulse(-axis, row.offset).head(motion.freedoms);
-    visit(m_bodyDof[body - m_bodies.begin()], generalised);
+    visit(m_bodyDof[body], generalised);
   }
 }
 

@@ -336,6 +336,7 @@ class DirectBlock {
   template <typename Visit>
   void visitImpulseOnDofs(const ContactRow& row, const Vec3& axis, Visit&& visit) const;
   int32_t localNode(int32_t node) const;  // index among the block's nodes, or −1
+  size_t blockBody(int32_t body) const;   // index in m_bodies, or m_bodies.size()
   int32_t globalNode(int32_t local) const;
   const NodeRange& rangeOf(int32_t node) const;  // of one of the block's nodes
   // `mayKeep`: an earlier factorisation of the same pattern is kept instead (see the header);
