@@ -183,8 +183,9 @@ class DirectBlock {
   // points as they are.
   // The dynamic bodies its anchors hold move by the same solve: their moves (translation and
   // rotation vector, about the centre of mass) are appended to `bodyMoves` for the caller to
-  // apply. Returns false when it did not (no rows, no factorisation, or a dynamic body that a
-  // contact of the block touches).
+  // apply. Returns false when it did not (no rows, no factorisation, a dynamic body that a
+  // contact of the block touches, or a sheet whose worst edge the step would have lengthened:
+  // then its nodes are left where they were, for the strain-limiting passes).
   struct BodyMove {
     int32_t body;
     Vec3 translation, rotation;
@@ -234,6 +235,7 @@ class DirectBlock {
   double m_stepRhsScale = 0.0;  // the largest right-hand side of this step's solves, scaled
   std::vector<int> m_analysedOuter, m_analysedInner;  // the pattern the ordering was computed for
   Eigen::VectorXd m_rhs, m_solution, m_refinement, m_residual;
+  std::vector<Vec3> m_positionsBefore;  // projectPositions' nodes, to undo a step that did not help
   // The low-rank correction for the rows let go since the last factorisation (release()), in
   // storage of at most kLowRankReleases, so that it never allocates.
   static constexpr Eigen::Index kLowRankReleases = 32;
@@ -337,6 +339,7 @@ class DirectBlock {
   void visitImpulseOnDofs(const ContactRow& row, const Vec3& axis, Visit&& visit) const;
   int32_t localNode(int32_t node) const;  // index among the block's nodes, or −1
   size_t blockBody(int32_t body) const;   // index in m_bodies, or m_bodies.size()
+  double worstEdgeError(const ConstraintRows& rows, const NodeArrays& nodes) const;
   int32_t globalNode(int32_t local) const;
   const NodeRange& rangeOf(int32_t node) const;  // of one of the block's nodes
   // `mayKeep`: an earlier factorisation of the same pattern is kept instead (see the header);
