@@ -226,6 +226,23 @@ double worstGridStretch(std::span<const Vec3> x, int32_t side, double edge) {
   return worst;
 }
 
+// A 1 m square cloth of side × side nodes at y = 1 with inextensible grid edges and bending of
+// strength `bending` N, and a world stepping it with K = `iterations`.
+DeformableDesc squareCloth(const char* name, int side, double mass, double bending) {
+  DeformableDesc desc;
+  desc.name = name;
+  desc.mesh = *makeClothGrid({-0.5, 1.0, -0.5}, {1, 0, 0}, {0, 0, 1}, side, side, mass);
+  desc.inextensibility.enabled = true;
+  desc.bending.enabled = true;
+  desc.bending.maxForce = bending;
+  return desc;
+}
+void setIterations(World& world, int iterations) {
+  WorldSettings settings = world.settings();
+  settings.solver.iterations = iterations;
+  ASSERT_TRUE(world.setSettings(settings).ok());
+}
+
 // A 31 × 31 curtain pinned along its top edge, its edges swept (no direct block), hanging
 // straight from rest at the default K = 4: it should stay where it hangs. Its columns are chains
 // of 30 edges; Gauss-Seidel alone left the skirt falling further than the edges allow every
@@ -269,17 +286,10 @@ TEST(World, SweptCurtainHangsStill) {
 TEST(World, SweptClothPinnedAlongItsSidesHoldsItsPins) {
   for (const int iterations : {2, 4}) {
     World world;
-    WorldSettings settings = world.settings();
-    settings.solver.iterations = iterations;
-    ASSERT_TRUE(world.setSettings(settings).ok());
-    DeformableDesc desc;
-    desc.name = "cloth";
+    setIterations(world, iterations);
     constexpr int kSide = 31;
     const double edge = 1.0 / (kSide - 1);
-    desc.mesh = *makeClothGrid({-0.5, 1.0, -0.5}, {1, 0, 0}, {0, 0, 1}, kSide, kSide, 0.1);
-    desc.inextensibility.enabled = true;
-    desc.bending.enabled = true;
-    desc.bending.maxForce = 0.05;
+    DeformableDesc desc = squareCloth("cloth", kSide, 0.1, 0.05);
     desc.rowSolver = RowSolverKind::Iterative;
     const DeformableId cloth = *world.addDeformable(desc);
     std::vector<int32_t> pinned;
@@ -313,18 +323,10 @@ TEST(World, SweptClothPinnedAlongItsSidesHoldsItsPins) {
 TEST(World, ClothHungByItsCornersKeepsItsEdges) {
   for (const int iterations : {2, 4}) {
     World world;
-    WorldSettings settings = world.settings();
-    settings.solver.iterations = iterations;
-    ASSERT_TRUE(world.setSettings(settings).ok());
-    DeformableDesc desc;
-    desc.name = "hammock";
+    setIterations(world, iterations);
     constexpr int kSide = 21;
     const double edge = 1.0 / (kSide - 1);
-    desc.mesh = *makeClothGrid({-0.5, 1.0, -0.5}, {1, 0, 0}, {0, 0, 1}, kSide, kSide, 0.2);
-    desc.inextensibility.enabled = true;
-    desc.bending.enabled = true;
-    desc.bending.maxForce = 0.1;
-    const DeformableId cloth = *world.addDeformable(desc);
+    const DeformableId cloth = *world.addDeformable(squareCloth("hammock", kSide, 0.2, 0.1));
     const std::span<const Vec3> start = world.nodePositions(cloth);
     for (int32_t n : {0, kSide - 1, kSide * (kSide - 1), kSide * kSide - 1})
       ASSERT_TRUE(world.addFixedPoint(cloth, n, Vec3(start[n])).ok());
