@@ -227,8 +227,16 @@ double worstGridStretch(std::span<const Vec3> x, int32_t side, double edge) {
   return worst;
 }
 
+// The root mean square of a deformable's node speeds.
+double rmsNodeSpeed(const World& world, DeformableId id) {
+  double squares = 0.0;
+  const std::span<const Vec3> v = world.nodeVelocities(id);
+  for (const Vec3& speed : v) squares += speed.squaredNorm();
+  return std::sqrt(squares / static_cast<double>(v.size()));
+}
+
 // A 1 m square cloth of side × side nodes at y = 1 with inextensible grid edges and bending of
-// strength `bending` N, and a world stepping it with K = `iterations`.
+// strength `bending` N.
 DeformableDesc squareCloth(const char* name, int side, double mass, double bending) {
   DeformableDesc desc;
   desc.name = name;
@@ -238,6 +246,7 @@ DeformableDesc squareCloth(const char* name, int side, double mass, double bendi
   desc.bending.maxForce = bending;
   return desc;
 }
+// Steps `world` with K = `iterations`.
 void setIterations(World& world, int iterations) {
   WorldSettings settings = world.settings();
   settings.solver.iterations = iterations;
@@ -267,9 +276,7 @@ TEST(World, SweptCurtainHangsStill) {
     ASSERT_TRUE(world.step(kStep).ok());
     worstStretch = std::max(worstStretch, worstGridStretch(world.nodePositions(curtain), kSide, edge));
     if (step < 60) continue;  // the second and third second
-    double squares = 0.0;
-    for (const Vec3& v : world.nodeVelocities(curtain)) squares += v.squaredNorm();
-    meanSpeed += std::sqrt(squares / (kSide * kSide));
+    meanSpeed += rmsNodeSpeed(world, curtain);
     ++samples;
   }
   EXPECT_LT(meanSpeed / samples, 1e-3);  // m/s RMS
@@ -341,9 +348,7 @@ TEST(World, ClothHungByItsCornersKeepsItsEdges) {
       ASSERT_TRUE(world.step(h).ok()) << "K = " << iterations << ", step " << step;
       if (step >= 50) worstStretch = std::max(worstStretch, worstGridStretch(world.nodePositions(cloth), kSide, edge));
       if (step < steps - (shortTests() ? 50 : 100)) continue;
-      double squares = 0.0;
-      for (const Vec3& v : world.nodeVelocities(cloth)) squares += v.squaredNorm();
-      meanSpeed += std::sqrt(squares / (kSide * kSide));
+      meanSpeed += rmsNodeSpeed(world, cloth);
       ++samples;
     }
     EXPECT_LT(worstStretch, 0.02) << "K = " << iterations;  // the gauntlet's bound for cloth
