@@ -92,6 +92,39 @@ TEST(Jacobians, BendingMatchesFiniteDifference) {
   }
 }
 
+// The warm start carries last step's impulse onto the new Jacobian (constraints/bending.h): λ
+// unchanged while J is, and otherwise the λ' whose velocity change W Jᵀ λ' is nearest, in the
+// mass metric, to the old W J₀ᵀ λ: Σₖ wₖ Jₖ · (Jₖ λ' − J₀ₖ λ) = 0, bounded to ±F h.
+TEST(Jacobians, BendingWarmStartCarriesTheImpulseOntoTheNewJacobian) {
+  std::mt19937 rng(3);
+  for (int trial = 0; trial < kConfigurations; ++trial) {
+    NodeArrays nodes = randomNodes(rng, 4);
+    BendingRow row;
+    row.node = {0, 1, 2, 3};
+    row.restDot = -0.3;
+    row.restEdgeLength = 0.8;
+    row.maxForce = 1e6;  // no bound in the way
+    prepareBending(row, nodes, 0.01, 10.0);
+    row.lambda = 0.37;
+    prepareBending(row, nodes, 0.01, 10.0);
+    EXPECT_NEAR(row.lambda, 0.37, 1e-12);
+    const std::array<Vec3, 4> before = row.jacobian;
+    for (Vec3& x : nodes.position) x += randomVector(rng, 0.3);
+    prepareBending(row, nodes, 0.01, 10.0);
+    double gradient = 0.0, scale = 0.0;
+    for (int k = 0; k < 4; ++k) {
+      gradient += nodes.inverseMass[k] * row.jacobian[k].dot(row.jacobian[k] * row.lambda - before[k] * 0.37);
+      scale += nodes.inverseMass[k] * row.jacobian[k].norm() * before[k].norm() * 0.37;
+    }
+    EXPECT_LT(std::abs(gradient), 1e-12 * scale);
+    EXPECT_GT(std::abs(row.lambda - 0.37), 1e-6);  // the moves changed J
+    row.maxForce = 1.0;  // |λ| ≤ F h = 0.01
+    row.lambda = 5.0;
+    prepareBending(row, nodes, 0.01, 10.0);
+    EXPECT_NEAR(std::abs(row.lambda), 0.01, 1e-15);
+  }
+}
+
 TEST(Jacobians, FixedPointMatchesFiniteDifference) {
   std::mt19937 rng(3);
   for (int trial = 0; trial < kConfigurations; ++trial) {
