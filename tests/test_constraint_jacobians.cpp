@@ -73,14 +73,20 @@ TEST(Jacobians, InextensibilityMatchesFiniteDifference) {
   }
 }
 
+// A bending row over nodes 0 to 3 (hinge 0-1, wings 2 and 3).
+BendingRow bendingRowOverFourNodes() {
+  BendingRow row;
+  row.node = {0, 1, 2, 3};
+  row.restDot = -0.3;
+  row.restEdgeLength = 0.8;
+  return row;
+}
+
 TEST(Jacobians, BendingMatchesFiniteDifference) {
   std::mt19937 rng(2);
   for (int trial = 0; trial < kConfigurations; ++trial) {
     NodeArrays nodes = randomNodes(rng, 4);
-    BendingRow row;
-    row.node = {0, 1, 2, 3};
-    row.restDot = -0.3;
-    row.restEdgeLength = 0.8;
+    BendingRow row = bendingRowOverFourNodes();
     prepareBending(row, nodes, 0.01, 10.0);
     auto c = [&] { return bendingError(row, nodes.position); };
     for (int k = 0; k < 4; ++k) expectClose(row.jacobian[k], finiteDifference(nodes, k, c));
@@ -99,10 +105,7 @@ TEST(Jacobians, BendingWarmStartCarriesTheImpulseOntoTheNewJacobian) {
   std::mt19937 rng(3);
   for (int trial = 0; trial < kConfigurations; ++trial) {
     NodeArrays nodes = randomNodes(rng, 4);
-    BendingRow row;
-    row.node = {0, 1, 2, 3};
-    row.restDot = -0.3;
-    row.restEdgeLength = 0.8;
+    BendingRow row = bendingRowOverFourNodes();
     row.maxForce = 1e6;  // no bound in the way
     prepareBending(row, nodes, 0.01, 10.0);
     row.lambda = 0.37;
