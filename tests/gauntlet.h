@@ -45,7 +45,10 @@ struct Override {
 // A loaded scene and its world, stepped with timing.
 class Run {
  public:
-  Run(const std::string& file, const Override& override, Outcome& result) : m_result(result) {
+  // `adjust`, when given, edits the loaded scene before it is built.
+  Run(const std::string& file, const Override& override, Outcome& result,
+      const std::function<void(Scene&)>& adjust = {})
+      : m_result(result) {
     result.scene = file;
     tandem::Result<Scene> loaded = loadScene(std::string(TANDEM_SOURCE_DIR) + "/scenes/" + file);
     if (!loaded) {
@@ -55,6 +58,7 @@ class Run {
     scene = *loaded;
     if (override.iterations > 0) scene.settings.solver.iterations = override.iterations;
     if (override.substeps > 0) scene.settings.solver.substeps = override.substeps;
+    if (adjust) adjust(scene);
     if (Status built = buildScene(scene, world); !built) result.error = built.message();
   }
 

@@ -65,38 +65,20 @@ TEST(Gauntlet, WiderClothOnSphereStaysWithinItsStretchLimit) {
 TEST(Gauntlet, FineLightClothWithStiffBendingDrapesWithSubsteps) {
   // 204 s under the sanitizers (3.5 s in Release), and it needs its 28 steps to show anything.
   if (shortTests()) GTEST_SKIP() << "long under the sanitizers; the Release suite runs it";
-  Result<Scene> loaded = loadScene(TANDEM_SOURCE_DIR "/scenes/gauntlet/cloth_sphere_101.json");
-  ASSERT_TRUE(loaded.ok()) << loaded.message();
-  Scene scene = *loaded;
-  ASSERT_EQ(scene.deformables.size(), 1u);
-  scene.deformables[0].density = 0.05;  // kg/m², against 0.2
-  scene.deformables[0].desc.bending.frequency = 20.0;
-  scene.settings.solver.iterations = 2;
-  scene.settings.solver.substeps = 4;
-  World world;
-  ASSERT_TRUE(buildScene(scene, world).ok());
-  const DeformableId cloth = *world.findDeformable("cloth");
-  const std::span<const double> inverseMass = world.nodeInverseMasses(cloth);
-  auto energy = [&] {
-    double e = 0.0;
-    const std::span<const Vec3> x = world.nodePositions(cloth), v = world.nodeVelocities(cloth);
-    for (size_t n = 0; n < x.size(); ++n) e += (0.5 * v[n].squaredNorm() - scene.settings.gravity.dot(x[n])) / inverseMass[n];
-    return e;
-  };
-  constexpr int32_t kSide = 101;
-  const double edge = 1.5 / (kSide - 1);  // m: the scene's 1.5 m square
-  const double start = energy();
+  Outcome result;
+  gauntlet::Run run("gauntlet/cloth_sphere_101.json", {2, 4}, result, [](Scene& scene) {
+    scene.deformables.at(0).density = 0.05;  // kg/m², against 0.2
+    scene.deformables.at(0).desc.bending.frequency = 20.0;
+  });
+  ASSERT_TRUE(run.ok()) << result.error;
+  const DeformableId cloth = run.deformable("cloth");
+  const double start = run.energy();
   double worst = 0.0, highest = start;
-  for (int step = 0; step < 40; ++step) {
-    const Status status = world.step(scene.timeStep);
-    ASSERT_TRUE(status.ok()) << "step " << step << ": " << status.message();
-    highest = std::max(highest, energy());
-    const std::span<const Vec3> x = world.nodePositions(cloth);
-    for (int32_t n = 0; n < kSide * kSide; ++n) {
-      if (n % kSide + 1 < kSide) worst = std::max(worst, (x[n + 1] - x[n]).norm() / edge - 1);
-      if (n + kSide < kSide * kSide) worst = std::max(worst, (x[n + kSide] - x[n]).norm() / edge - 1);
-    }
-  }
+  run.run(0.8, [&] {  // 40 steps
+    worst = std::max(worst, run.worstStretch(cloth));
+    highest = std::max(highest, run.energy());
+  });
+  EXPECT_TRUE(result.error.empty()) << result.error;
   EXPECT_LT(worst, 0.02);
   EXPECT_LE(highest, start);
 }
