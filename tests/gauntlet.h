@@ -113,24 +113,33 @@ class Run {
     return fastest;
   }
   // Kinetic plus gravitational energy of every rigid body and node, heights from y = 0.
-  double energy() const {
-    const double g = -world.settings().gravity.y();
+  double energy() const { return kineticEnergy() + gravitationalEnergy(); }
+  double kineticEnergy() const {
     double total = 0.0;
     for (int b = 0; b < world.rigidBodyCount(); ++b) {
       const RigidBodyId id{b};
-      const double m = world.rigidMass(id);
-      if (m == 0) continue;
-      total += 0.5 * m * world.rigidLinearVelocity(id).squaredNorm() + m * g * world.rigidPosition(id).y();
+      if (world.rigidMass(id) == 0) continue;  // static or kinematic
       const Vec3 w = world.rigidAngularVelocity(id);
-      total += 0.5 * w.dot(world.rigidInertia(id) * w);
+      total += 0.5 * world.rigidMass(id) * world.rigidLinearVelocity(id).squaredNorm() + 0.5 * w.dot(world.rigidInertia(id) * w);
     }
     for (int d = 0; d < world.deformableCount(); ++d) {
-      const DeformableId id{d};
-      const auto x = world.nodePositions(id);
-      const auto v = world.nodeVelocities(id);
-      const auto w = world.nodeInverseMasses(id);
+      const auto v = world.nodeVelocities(DeformableId{d});
+      const auto w = world.nodeInverseMasses(DeformableId{d});
+      for (size_t i = 0; i < v.size(); ++i)
+        if (w[i] > 0) total += 0.5 * v[i].squaredNorm() / w[i];
+    }
+    return total;
+  }
+  double gravitationalEnergy() const {
+    const double g = -world.settings().gravity.y();
+    double total = 0.0;
+    for (int b = 0; b < world.rigidBodyCount(); ++b)
+      total += world.rigidMass(RigidBodyId{b}) * g * world.rigidPosition(RigidBodyId{b}).y();
+    for (int d = 0; d < world.deformableCount(); ++d) {
+      const auto x = world.nodePositions(DeformableId{d});
+      const auto w = world.nodeInverseMasses(DeformableId{d});
       for (size_t i = 0; i < x.size(); ++i)
-        if (w[i] > 0) total += (0.5 * v[i].squaredNorm() + g * x[i].y()) / w[i];
+        if (w[i] > 0) total += g * x[i].y() / w[i];
     }
     return total;
   }

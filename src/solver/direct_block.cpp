@@ -802,14 +802,15 @@ void DirectBlock::solve(ConstraintRows& rows, SolverContext& ctx, SweepStats& st
     released.clear();
     for (size_t r = m_persistentRows; r < m_rows.size(); ++r) {
       const double total = rows.contacts[m_rows[r].index].lambdaNormal - m_solution[m_dofCount + r];
-      if (!m_released[r] && total < 0.0) {
-        released.push_back(static_cast<int32_t>(r));
-        releasedHere[r] = 1;
-      }
+      if (!m_released[r] && total < 0.0) released.push_back(static_cast<int32_t>(r));
     }
-    if (released.empty()) break;
+    // The last round's pulling contacts hold on through this solve (the next sweep's solve finds
+    // them again): the impulses of every other row were solved with them holding, and letting
+    // them go without solving again left those impulses unbalanced. In a box stack on a hammock
+    // that threw 0.45 g nodes at 51 m/s and the boxes at 11 rad/s in one sweep.
+    if (released.empty() || round == kMaxReleaseRounds) break;
+    for (int32_t r : released) releasedHere[r] = 1;
     release(released);
-    if (round == kMaxReleaseRounds) break;
   }
   // A released contact goes back to the PGS sweep, which may still push with it.
   m_velocityChange.setZero(m_dofCount);
