@@ -184,8 +184,9 @@ class DirectBlock {
   // The dynamic bodies its anchors hold move by the same solve: their moves (translation and
   // rotation vector, about the centre of mass) are appended to `bodyMoves` for the caller to
   // apply. Returns false when it did not (no rows, no factorisation, a dynamic body that a
-  // contact of the block touches, or a sheet whose worst edge the step would have lengthened:
-  // then its nodes are left where they were, for the strain-limiting passes).
+  // contact of the block touches, a sheet resting on itself or on another deformable, or a sheet
+  // whose worst edge the step would have lengthened: then its nodes are left where they were,
+  // for the strain-limiting passes).
   struct BodyMove {
     int32_t body;
     Vec3 translation, rotation;
@@ -338,6 +339,8 @@ class DirectBlock {
   template <typename Visit>
   void visitImpulseOnDofs(const ContactRow& row, const Vec3& axis, Visit&& visit) const;
   int32_t localNode(int32_t node) const;  // index among the block's nodes, or −1
+  // Whether a contact among deformables on the block's nodes pushed in this step.
+  bool restsOnDeformable(const ConstraintRows& rows) const;
   size_t blockBody(int32_t body) const;   // index in m_bodies, or m_bodies.size()
   double worstEdgeError(const ConstraintRows& rows, const NodeArrays& nodes) const;
   int32_t globalNode(int32_t local) const;
