@@ -137,8 +137,9 @@ TEST(Gauntlet, RopeOverWheelHoldsItsPivot) {
 // kinetic energy from 4 to 330 mJ in one step. Measured since: at most 10 mJ (K = 2) and 25 mJ
 // (K = 4) after 2.5 s, the pile's fall over by then.
 TEST(Gauntlet, BoxStackOnClothIsNeverThrown) {
+  // 2.6 s a run in Release (some 150 s under the sanitizers), and the burst came after 5.8 s.
+  if (shortTests()) GTEST_SKIP() << "long under the sanitizers; the Release suite runs it";
   for (const int iterations : {2, 4}) {
-    if (shortTests() && iterations == 4) continue;  // about a minute each under the sanitizers
     Outcome result;
     gauntlet::Run run("gauntlet/box_stack_on_cloth.json", {iterations, 1}, result);
     ASSERT_TRUE(run.ok()) << result.error;
