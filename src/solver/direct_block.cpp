@@ -129,8 +129,12 @@ void DirectBlock::addContacts(ConstraintRows& rows, std::span<const RigidSolverS
     // A contact with a still surface let go before, and not sunk in since, stays with the sweep
     // (else a resting jelly's same contacts with its dish joined and were let go every step,
     // each refactorising the block). One with a moving body joins again: a box on a hammock
-    // must be carried by the whole cloth.
-    if (row.releasedLastStep && row.gap > -slop && rigid[row.body].inverseMass == 0.0) {
+    // must be carried by the whole cloth. So does a rope's: a rope's block is cheap to factorise,
+    // and with its wrap's contacts in the sweep and its edges in the block the two took the wrap
+    // in turns, the contacts' warm starts kicking 0.2 g nodes at 5–12 m/s; a rope sliding round
+    // a post at K = 4 then drove its nodes into the post at up to 51 m/s and tore (the gauntlet's
+    // sliding capstan; docs/solver.md, thirty-second session).
+    if (row.releasedLastStep && row.gap > -slop && rigid[row.body].inverseMass == 0.0 && !rangeOf(row.node[0]).chain) {
       row.releasedFromBlock = true;
       continue;
     }
