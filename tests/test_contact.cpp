@@ -1,10 +1,10 @@
 // Contacts and friction: cloth against rigid shapes, against cloth and against itself.
 #include "collision/contact_motion.h"
 #include "collision/geometry.h"
+#include "gauntlet.h"
 #include "rigid_distance.h"
 #include "short_tests.h"
 
-#include <tandem/scene_file.h>
 #include <tandem/world.h>
 
 #include <gtest/gtest.h>
@@ -581,24 +581,20 @@ TEST_P(ClothFoldingOnItself, DoesNotPassThroughItself) {
 // strain-limiting passes now (solver/direct_block.cpp).
 TEST(ClothFoldingOnItself, ShippedStripLiesFoldedWithItsEdgesAndNoImpactZones) {
   if (shortTests()) GTEST_SKIP() << "long under the sanitizers; the Release suite runs it";  // 1.2 s in Release
-  Result<Scene> scene = loadScene(TANDEM_SOURCE_DIR "/scenes/self_collision.json");
-  ASSERT_TRUE(scene.ok()) << scene.message();
-  World world;
-  ASSERT_TRUE(buildScene(*scene, world).ok());
-  const DeformableId strip = *world.findDeformable("strip");
-  const DeformableMesh& rest = world.restMesh(strip);
-  const long steps = std::lround(scene->duration / scene->timeStep);
+  gauntlet::Outcome result;
+  gauntlet::Run run("self_collision.json", {}, result);
+  ASSERT_TRUE(run.ok()) << result.error;
+  const World& world = run.world;
+  const DeformableId strip = run.deformable("strip");
   int violated = 0, zoneNodes = 0;
-  double worst = 0.0;
-  for (long step = 0; step < steps; ++step) {
-    ASSERT_TRUE(world.step(scene->timeStep).ok());
+  double t = 0.0, worst = 0.0;
+  ASSERT_TRUE(run.run(0, [&] {
+    t += run.h();
     violated += !world.lastReport().violations.empty();
-    if (double(step + 1) * scene->timeStep <= scene->duration - 1.0) continue;
+    if (t <= run.scene.duration - 1.0) return;
     zoneNodes = std::max(zoneNodes, world.lastReport().impactZoneNodes);
-    const std::span<const Vec3> x = world.nodePositions(strip);
-    for (const auto& e : rest.edges)
-      worst = std::max(worst, (x[e[1]] - x[e[0]]).norm() / (rest.positions[e[1]] - rest.positions[e[0]]).norm() - 1.0);
-  }
+    worst = std::max(worst, run.worstStretch(strip));
+  })) << result.error;
   EXPECT_EQ(violated, 0) << "steps that reported a violated row";
   EXPECT_EQ(zoneNodes, 0) << "nodes moved rigidly by impact zones in the last second";
   EXPECT_LT(worst, 0.02) << "worst edge stretch in the last second";  // measured 1.05 %
