@@ -229,11 +229,13 @@ struct World::Impl final : bullet::SolverHooks {
   std::span<const CollisionSurface> collisionSurfaces();
   std::vector<CollisionSurface> surfaceScratch;
   std::vector<CollisionRigid> contactShapes;  // scratch of detectDeformableContacts: per rigid body
-  std::vector<uint64_t> anchoredPairs;        // its nodeBodyKey's of anchored pairs, sorted
+  std::vector<uint64_t> anchoredPairs;        // its nodeBodyKey's of pairs that do not collide, sorted
+  std::vector<char> anchoredBodies;           // listAnchoredPairs' scratch: per deformable, whether anchored
   ContactDetectionScratch contactScratch;
   ImpactZoneScratch impactScratch;  // of separateByImpactZones
 
   void detectDeformableContacts(double h);
+  void listAnchoredPairs();
 
   void noteBodyContacts();
   void rememberContacts();

@@ -18,6 +18,40 @@ std::span<const CollisionSurface> World::Impl::collisionSurfaces() {
   return surfaces;
 }
 
+// The node-body pairs that do not collide: a node anchored to a body, and the nodes one edge away
+// from it (as Bullet leaves out the contacts of bodies a joint links). An anchor holds its point
+// on the body's surface, so its face's neighbours lie within the sheet's thickness of the body:
+// their contacts with it pushed a flag's hem out of its weight's capsule, against the anchor's
+// hold on the face beside them, and stretched the hem 15 → 40 % (scenes/anchors.json).
+void World::Impl::listAnchoredPairs() {
+  anchoredPairs.clear();
+  for (const AnchorRow& row : rows.anchors)
+    for (int k = 0; k < 4; ++k)
+      if (row.weight[k] != 0.0) anchoredPairs.push_back(nodeBodyKey(row.node[k], row.body));
+  std::sort(anchoredPairs.begin(), anchoredPairs.end());
+  const size_t held = anchoredPairs.size();
+  auto bodiesHolding = [&](int32_t node, auto visit) {
+    for (auto it = std::lower_bound(anchoredPairs.begin(), anchoredPairs.begin() + static_cast<std::ptrdiff_t>(held),
+                                    nodeBodyKey(node, 0));
+         it != anchoredPairs.begin() + static_cast<std::ptrdiff_t>(held) && static_cast<int32_t>(*it >> 32) == node; ++it)
+      visit(static_cast<int32_t>(*it & 0xffffffffu));
+  };
+  anchoredBodies.assign(deformables.size(), 0);
+  for (const AnchorRow& row : rows.anchors) anchoredBodies[deformableIndexOfNode(row.node[0])] = 1;
+  for (size_t d = 0; d < deformables.size(); ++d) {
+    if (!anchoredBodies[d]) continue;
+    const DeformableRecord& body = deformables[d];
+    for (const auto* edges : {&body.restMesh.edges, &body.restMesh.shearEdges})
+      for (const auto& e : *edges) {
+        const int32_t a = body.firstNode + e[0], b = body.firstNode + e[1];
+        bodiesHolding(a, [&](int32_t rigidBody) { anchoredPairs.push_back(nodeBodyKey(b, rigidBody)); });
+        bodiesHolding(b, [&](int32_t rigidBody) { anchoredPairs.push_back(nodeBodyKey(a, rigidBody)); });
+      }
+  }
+  std::sort(anchoredPairs.begin(), anchoredPairs.end());
+  anchoredPairs.erase(std::unique(anchoredPairs.begin(), anchoredPairs.end()), anchoredPairs.end());
+}
+
 void World::Impl::detectDeformableContacts(double h) {
   const std::span<const CollisionSurface> surfaces = collisionSurfaces();
   std::vector<CollisionRigid>& shapes = contactShapes;
@@ -26,11 +60,7 @@ void World::Impl::detectDeformableContacts(double h) {
     shapes[b] = {rigidShapes[b].get(),        bullet.position(b),        bullet.orientation(b),
                  bullet.linearVelocity(b),    bullet.angularVelocity(b), rigidFriction[b],
                  bullet.mass(b),              rigidGroup[b],             rigidMask[b]};
-  anchoredPairs.clear();
-  for (const AnchorRow& row : rows.anchors)
-    for (int k = 0; k < 4; ++k)
-      if (row.weight[k] != 0.0) anchoredPairs.push_back(nodeBodyKey(row.node[k], row.body));
-  std::sort(anchoredPairs.begin(), anchoredPairs.end());
+  listAnchoredPairs();
   rows.contacts.clear();
   detectContacts(surfaces, nodes, shapes, anchoredPairs, h, rows.contacts, contactScratch);
   for (ContactRow& row : rows.contacts) {

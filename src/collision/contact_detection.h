@@ -55,7 +55,8 @@ struct CollisionRigid {
   uint32_t mask = kAllCollisionGroups;
 };
 
-// A node anchored to a rigid body does not collide with it (nor do faces around the node).
+// A node anchored to a rigid body does not collide with it (nor do faces around the node); the
+// world lists its neighbours too (World::Impl::listAnchoredPairs).
 uint64_t nodeBodyKey(int32_t node, int32_t body);
 
 // Which surfaces may touch which, given a box around each: meets[a * count + b] is set for a
