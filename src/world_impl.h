@@ -230,7 +230,8 @@ struct World::Impl final : bullet::SolverHooks {
   std::vector<CollisionSurface> surfaceScratch;
   std::vector<CollisionRigid> contactShapes;  // scratch of detectDeformableContacts: per rigid body
   std::vector<uint64_t> anchoredPairs;        // its nodeBodyKey's of pairs that do not collide, sorted
-  std::vector<char> anchoredBodies;           // listAnchoredPairs' scratch: per deformable, whether anchored
+  std::vector<uint64_t> anchoredNeighbours;   // listAnchoredPairs' scratch: the anchored nodes' neighbours' pairs
+  std::vector<char> anchoredBodies;           // and per deformable, whether anchored
   ContactDetectionScratch contactScratch;
   ImpactZoneScratch impactScratch;  // of separateByImpactZones
 

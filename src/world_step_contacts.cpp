@@ -29,13 +29,13 @@ void World::Impl::listAnchoredPairs() {
     for (int k = 0; k < 4; ++k)
       if (row.weight[k] != 0.0) anchoredPairs.push_back(nodeBodyKey(row.node[k], row.body));
   std::sort(anchoredPairs.begin(), anchoredPairs.end());
-  const size_t held = anchoredPairs.size();
+  // A node's keys are contiguous in the sorted list, from nodeBodyKey(node, 0) up.
   auto bodiesHolding = [&](int32_t node, auto visit) {
-    for (auto it = std::lower_bound(anchoredPairs.begin(), anchoredPairs.begin() + static_cast<std::ptrdiff_t>(held),
-                                    nodeBodyKey(node, 0));
-         it != anchoredPairs.begin() + static_cast<std::ptrdiff_t>(held) && static_cast<int32_t>(*it >> 32) == node; ++it)
-      visit(static_cast<int32_t>(*it & 0xffffffffu));
+    const uint64_t first = nodeBodyKey(node, 0), end = nodeBodyKey(node + 1, 0);
+    for (auto it = std::lower_bound(anchoredPairs.begin(), anchoredPairs.end(), first); it != anchoredPairs.end() && *it < end; ++it)
+      visit(static_cast<int32_t>(*it - first));
   };
+  anchoredNeighbours.clear();
   anchoredBodies.assign(deformables.size(), 0);
   for (const AnchorRow& row : rows.anchors) anchoredBodies[deformableIndexOfNode(row.node[0])] = 1;
   for (size_t d = 0; d < deformables.size(); ++d) {
@@ -44,10 +44,11 @@ void World::Impl::listAnchoredPairs() {
     for (const auto* edges : {&body.restMesh.edges, &body.restMesh.shearEdges})
       for (const auto& e : *edges) {
         const int32_t a = body.firstNode + e[0], b = body.firstNode + e[1];
-        bodiesHolding(a, [&](int32_t rigidBody) { anchoredPairs.push_back(nodeBodyKey(b, rigidBody)); });
-        bodiesHolding(b, [&](int32_t rigidBody) { anchoredPairs.push_back(nodeBodyKey(a, rigidBody)); });
+        bodiesHolding(a, [&](int32_t rigidBody) { anchoredNeighbours.push_back(nodeBodyKey(b, rigidBody)); });
+        bodiesHolding(b, [&](int32_t rigidBody) { anchoredNeighbours.push_back(nodeBodyKey(a, rigidBody)); });
       }
   }
+  anchoredPairs.insert(anchoredPairs.end(), anchoredNeighbours.begin(), anchoredNeighbours.end());
   std::sort(anchoredPairs.begin(), anchoredPairs.end());
   anchoredPairs.erase(std::unique(anchoredPairs.begin(), anchoredPairs.end()), anchoredPairs.end());
 }
