@@ -231,7 +231,7 @@ struct World::Impl final : bullet::SolverHooks {
   std::vector<CollisionRigid> contactShapes;  // scratch of detectDeformableContacts: per rigid body
   std::vector<uint64_t> anchoredPairs;        // its nodeBodyKey's of pairs that do not collide, sorted
   std::vector<uint64_t> anchoredNeighbours;   // listAnchoredPairs' scratch: the anchored nodes' neighbours' pairs
-  std::vector<char> anchoredBodies;           // and per deformable, whether anchored
+  std::vector<char> anchoredDeformables;      // and per deformable, whether it has an anchor
   ContactDetectionScratch contactScratch;
   ImpactZoneScratch impactScratch;  // of separateByImpactZones
 

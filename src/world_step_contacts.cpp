@@ -36,10 +36,10 @@ void World::Impl::listAnchoredPairs() {
       visit(static_cast<int32_t>(*it - first));
   };
   anchoredNeighbours.clear();
-  anchoredBodies.assign(deformables.size(), 0);
-  for (const AnchorRow& row : rows.anchors) anchoredBodies[deformableIndexOfNode(row.node[0])] = 1;
+  anchoredDeformables.assign(deformables.size(), 0);
+  for (const AnchorRow& row : rows.anchors) anchoredDeformables[deformableIndexOfNode(row.node[0])] = 1;
   for (size_t d = 0; d < deformables.size(); ++d) {
-    if (!anchoredBodies[d]) continue;
+    if (!anchoredDeformables[d]) continue;
     const DeformableRecord& body = deformables[d];
     for (const auto* edges : {&body.restMesh.edges, &body.restMesh.shearEdges})
       for (const auto& e : *edges) {
