@@ -24,7 +24,6 @@ import scipy.sparse.linalg as spl
 import tandem
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
-SPHERE_CENTRE, SPHERE_RADIUS, THICKNESS = np.array([0.0, 0.9, 0.0]), 0.4, 0.008  # the scenes'
 
 
 def scene_file(size):
@@ -65,6 +64,10 @@ def main():
     world = scene.build()
     h = scene.time_step
     cloth = world.deformable_ids()[0]
+    sphere = world.find_rigid_body("sphere")
+    centre = np.array(world.rigid_position(sphere))
+    radius = world.rigid_shape(sphere).radius
+    thickness = scene.deformables[0].desc.collision.thickness
     for _ in range(round(args.time / h)):
         world.step(h)
     x = np.array(world.node_positions(cloth))
@@ -74,11 +77,11 @@ def main():
     edges = np.array(mesh.edges)
     rest = edge_lengths(np.array(mesh.positions), edges)
     if not args.end:
-        x = x + h * (v + h * np.array([0.0, -9.81, 0.0]))
+        x = x + h * (v + h * np.array(world.settings.gravity))
 
-    radial = x - SPHERE_CENTRE
+    radial = x - centre
     distance = np.linalg.norm(radial, axis=1)
-    held = (distance < SPHERE_RADIUS + 1.5 * THICKNESS) & (not args.free)
+    held = (distance < radius + 1.5 * thickness) & (not args.free)
     held_normal = np.where(held[:, None], radial / distance[:, None], 0.0)
 
     stretch = edge_lengths(x, edges) / rest - 1
@@ -91,7 +94,7 @@ def main():
         x = x + move
         stretch = edge_lengths(x, edges) / rest - 1
         moved = np.linalg.norm(move, axis=1)
-        depth = SPHERE_RADIUS + THICKNESS - np.linalg.norm(x - SPHERE_CENTRE, axis=1)
+        depth = radius + thickness - np.linalg.norm(x - centre, axis=1)
         print(f"  step {step}: worst {stretch.max():.4f}, {(stretch > 0.011).sum()} past; largest move "
               f"{1e3 * moved.max():.2f} mm (median {1e3 * np.median(moved):.3f}); deepest in the sphere "
               f"{1e3 * depth.max():.2f} mm; linear residual {residual:.1e}")
