@@ -74,7 +74,9 @@ TEST(Gauntlet, PaperClothOnSphereStaysWithinItsStretchLimit) {
   expectPasses(clothOnSphere("cloth_sphere.json", shortTests() ? 1.2 : 3.0));
 }
 TEST(Gauntlet, WiderClothOnSphereStaysWithinItsStretchLimit) {
-  expectPasses(clothOnSphere("gauntlet/cloth_sphere_101.json", shortTests() ? 0.6 : 2.0));
+  // 83 s under the sanitizers even for 0.6 s of the scene; PaperClothOnSphere takes the same path.
+  if (shortTests()) GTEST_SKIP() << "long under the sanitizers; the Release suite runs it";
+  expectPasses(clothOnSphere("gauntlet/cloth_sphere_101.json", 2.0));
 }
 // The 101 × 101 cloth made four times lighter (11 mg nodes, those of the 201 × 201 cloth) with
 // bending four times stiffer (20 Hz), at K = 2 with 4 substeps: its skirt whips past the sphere at
@@ -120,7 +122,9 @@ TEST(Gauntlet, ProjectileCasesClothHangsWithoutTheBall) {
   const DeformableId cloth = run.deformable("cloth");
   double sum = 0.0;
   int samples = 0;
-  ASSERT_TRUE(run.run(8.0, [&] {
+  // 45 s under the sanitizers for the 8 s: there the cloth hangs for 3 s, measured over the last 1.
+  const double seconds = shortTests() ? 3.0 : 8.0;
+  ASSERT_TRUE(run.run(seconds, [&] {
     if (++samples <= 100) return;  // the first 2 s
     double squares = 0.0;
     const std::span<const Vec3> v = run.world.nodeVelocities(cloth);
@@ -139,11 +143,16 @@ TEST(Gauntlet, DISABLED_FastProjectileDoesNotPassThroughCloth) {
 // rests 2.7 and 2.8 cm above the cloth.
 TEST(Gauntlet, BallDroppedGentlyOnClothIsHeld) {
   expectPasses(projectile(20, {}, 0.5));
+  // 42 s under the sanitizers for both: there the default settings only.
+  if (shortTests()) return;
   expectPasses(projectile(20, {.iterations = 4, .substeps = 1}, 0.5));
 }
 // The wheel is hinged to the world: Tandem's rows move it only about its axle (RigidSolverState).
 TEST(Gauntlet, RopeOverWheelHoldsItsPivot) {
-  for (const Override& settings : {Override{}, Override{.iterations = 2, .substeps = 1}, Override{.iterations = 2, .substeps = 4}}) {
+  // 50 s under the sanitizers for the three: there the default settings only.
+  std::vector<Override> runs{Override{}};
+  if (!shortTests()) runs.insert(runs.end(), {Override{.iterations = 2, .substeps = 1}, Override{.iterations = 2, .substeps = 4}});
+  for (const Override& settings : runs) {
     const Outcome result = ropeWheel(settings);
     ASSERT_TRUE(result.error.empty()) << result.error;
     const Measure& sag = result.measures.at(0);
