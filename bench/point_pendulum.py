@@ -8,7 +8,11 @@ costs what (docs/solver.md, twenty-eighth session). Each step: gravity, then the
 
   bias β     the velocity row aims at -β C / h (Baumgarte; Tandem's default β = 0.1),
   project    the position is put back on the circle, velocity unchanged (post-stabilisation),
-  shake      the position is put back along the old radius and v = Δx / h (SHAKE: symplectic).
+  shake      the position is put back along the old radius and v = Δx / h (SHAKE: symplectic),
+  rattle     SHAKE with gravity's kick split in halves around it and the velocity at the step's
+             end projected onto the circle's tangent there (RATTLE): the same positions as
+             SHAKE, but the velocity kept (and measured) is the one at the step's end, not the
+             one half a kick before it.
 
 Prints the least and the most energy (above rest) over the run, as fractions of the start's.
 
@@ -25,25 +29,31 @@ def swing(h, treatment, beta=0.1):
     rest = -G * LENGTH
     start = G * x[1] - rest
     least = most = 1.0
+    kick = 0.5 * h * G if treatment == "rattle" else h * G
     for _ in range(round(SECONDS / h)):
-        v[1] -= h * G
+        v[1] -= kick
         r = math.hypot(*x)
         n = [x[0] / r, x[1] / r]
         target = -beta * (r - LENGTH) / h if treatment == "bias" else 0.0
-        if treatment != "shake":  # SHAKE has no velocity row: its projection carries the force
+        if treatment not in ("shake", "rattle"):  # no velocity row: the projection carries the force
             radial = v[0] * n[0] + v[1] * n[1]
             v = [v[0] + (target - radial) * n[0], v[1] + (target - radial) * n[1]]
         moved = [x[0] + h * v[0], x[1] + h * v[1]]
         if treatment == "project":
             r = math.hypot(*moved)
             moved = [moved[0] * LENGTH / r, moved[1] * LENGTH / r]
-        elif treatment == "shake":  # moved + μ x on the circle: the larger root of a quadratic
+        elif treatment in ("shake", "rattle"):  # moved + μ x on the circle: the larger root of a quadratic
             a = x[0] ** 2 + x[1] ** 2
             b = 2.0 * (moved[0] * x[0] + moved[1] * x[1])
             c = moved[0] ** 2 + moved[1] ** 2 - LENGTH ** 2
             mu = (-b + math.sqrt(b * b - 4.0 * a * c)) / (2.0 * a)
             moved = [moved[0] + mu * x[0], moved[1] + mu * x[1]]
             v = [(moved[0] - x[0]) / h, (moved[1] - x[1]) / h]
+        if treatment == "rattle":  # the second half kick, then v on the tangent at the new x
+            v[1] -= kick
+            n = [moved[0] / LENGTH, moved[1] / LENGTH]
+            radial = v[0] * n[0] + v[1] * n[1]
+            v = [v[0] - radial * n[0], v[1] - radial * n[1]]
         x = moved
         energy = (G * x[1] + 0.5 * (v[0] ** 2 + v[1] ** 2) - rest) / start
         least, most = min(least, energy), max(most, energy)
@@ -54,7 +64,8 @@ def main():
     print(f"{'h (s)':>7}  {'treatment':<12} {'least':>7} {'most':>7}")
     for h in (0.02, 0.005):
         for name, treatment, beta in (("bias 0.1", "bias", 0.1), ("bias 1", "bias", 1.0),
-                                      ("project", "project", 0.0), ("shake", "shake", 0.0)):
+                                      ("project", "project", 0.0), ("shake", "shake", 0.0),
+                                      ("rattle", "rattle", 0.0)):
             least, most = swing(h, treatment, beta)
             print(f"{h:7.3f}  {name:<12} {least:7.4f} {most:7.4f}")
 
