@@ -92,6 +92,8 @@ class ClothDrop : public ::testing::TestWithParam<DropCase> {};
 
 TEST_P(ClothDrop, RestsOnTheShapeWithoutPenetrating) {
   const DropCase& drop = GetParam();
+  // 34 s under the sanitizers for the sphere, whose contacts the paper's cloth scene runs there.
+  if (shortTests() && drop.shape.type == ShapeType::Sphere) GTEST_SKIP() << "long under the sanitizers; the Release suite runs it";
   World world;
   const RigidBodyId body = *world.addRigidBody(staticBody(drop.name, drop.shape, drop.position));
   const geometry::CollisionShape shape = collisionShape(drop.shape);
@@ -545,8 +547,8 @@ class ClothFoldingOnItself : public testing::TestWithParam<double> {};
 
 TEST_P(ClothFoldingOnItself, DoesNotPassThroughItself) {
   const double depth = GetParam();
-  // 59 s under the sanitizers: there only the far strip, which takes the same path.
-  if (shortTests() && depth == 0.0) GTEST_SKIP() << "long under the sanitizers; the Release suite runs it";
+  // 40 to 60 s each under the sanitizers: there cli_run_whole_self_collision folds the shipped strip.
+  if (shortTests()) GTEST_SKIP() << "long under the sanitizers; the Release suite runs it";
   World world;
   ASSERT_TRUE(world.addRigidBody(staticBody("ground", RigidShape::plane({0, 1, 0}, 0.0), Vec3::Zero())).ok());
   // A strip standing on its end, tilted a little: it collapses and folds over itself.
