@@ -150,9 +150,8 @@ TEST(Gauntlet, BallDroppedGentlyOnClothIsHeld) {
 // The wheel is hinged to the world: Tandem's rows move it only about its axle (RigidSolverState).
 TEST(Gauntlet, RopeOverWheelHoldsItsPivot) {
   // 50 s under the sanitizers for the three: there the default settings only.
-  std::vector<Override> runs{Override{}};
-  if (!shortTests()) runs.insert(runs.end(), {Override{.iterations = 2, .substeps = 1}, Override{.iterations = 2, .substeps = 4}});
-  for (const Override& settings : runs) {
+  for (const Override& settings :
+       casesToRun({Override{}, Override{.iterations = 2, .substeps = 1}, Override{.iterations = 2, .substeps = 4}})) {
     const Outcome result = ropeWheel(settings);
     ASSERT_TRUE(result.error.empty()) << result.error;
     const Measure& sag = result.measures.at(0);

@@ -293,7 +293,7 @@ TEST(World, SweptCurtainHangsStill) {
 // 1.5 / 1.3 %.
 TEST(World, SweptClothPinnedAlongItsSidesHoldsItsPins) {
   // 25 s under the sanitizers for both: there the paper's K = 2 only.
-  for (const int iterations : shortTests() ? std::vector<int>{2} : std::vector<int>{2, 4}) {
+  for (const int iterations : casesToRun({2, 4})) {
     World world;
     setIterations(world, iterations);
     constexpr int kSide = 31;
@@ -332,7 +332,7 @@ TEST(World, SweptClothPinnedAlongItsSidesHoldsItsPins) {
 // docs/solver.md, thirtieth session.)
 TEST(World, ClothHungByItsCornersKeepsItsEdges) {
   // 30 s under the sanitizers for both: there the paper's K = 2 only.
-  for (const int iterations : shortTests() ? std::vector<int>{2} : std::vector<int>{2, 4}) {
+  for (const int iterations : casesToRun({2, 4})) {
     World world;
     setIterations(world, iterations);
     constexpr int kSide = 21;
