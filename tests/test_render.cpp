@@ -449,11 +449,13 @@ TEST(Viewer, DraggingTheClothPullsTheBodyItIsAnchoredTo) {
   std::smatch match;
   ASSERT_TRUE(std::regex_search(output, match, line)) << output;
   std::printf("after the drag: %s\n", match.str(0).c_str());
-  EXPECT_GT(std::stod(match[1]) - (-0.05), 0.1) << output;  // pulled along +x by the cloth
-  // Still down: on the floor, or on the cloth bunched on it (a fresh-clone CI run on a loaded
-  // machine dragged the box 0.61 m, onto the folded cloth, and it rested 17 mm up; a box thrown
-  // off or sunk through the floor is off by far more).
-  EXPECT_NEAR(std::stod(match[2]), 0.1, 0.03);
+  // Pulled along +x by the cloth, not past the cursor's 150 pixels (0.42 m at the grab's depth),
+  // and flat on the floor. (The script paces the drag in simulated time, so a loaded machine
+  // sees the same drag; before the passes stopped keeping the anchors' neighbour nodes out of
+  // the box, such a drag lifted the box and once threw it over onto the cloth: test_grab.cpp.)
+  EXPECT_GT(std::stod(match[1]) - (-0.05), 0.2) << output;
+  EXPECT_LT(std::stod(match[1]) - (-0.05), 0.45) << output;
+  EXPECT_NEAR(std::stod(match[2]), 0.1, 0.002) << output;
 }
 
 }  // namespace

@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
 # Scripted mouse input to `tandem view` under Xvfb: presses the left button at pixel (X0, Y0),
-# moves to (X1, Y1) in small steps, holds, releases, lets the scene settle for 3 s of simulated
-# time (a box the drag tipped must fall back flat; the viewer keeps real time only on an idle
-# machine, so the script asks it for its simulated time with SIGUSR1 instead of sleeping a
-# wall-clock span: a loaded CI machine once left the box tipped, 13 mm high, after 3 wall-clock
-# seconds), then tells the viewer to quit (SIGTERM: it finishes its frame and prints where the
-# dynamic bodies are). The script decides when the viewer stops, so no xdotool call can meet a
-# window that is already gone.
+# moves to (X1, Y1) in small steps over 1.2 s, holds for 1 s, releases, lets the scene settle for
+# 3 s, then tells the viewer to quit (SIGTERM: it finishes its frame and prints where the dynamic
+# bodies are). Every span is simulated time, not wall-clock time: the script asks the viewer for
+# its simulated time with SIGUSR1 and waits for it to pass, because the viewer keeps real time
+# only on an idle machine. Paced by the wall clock, a loaded CI machine once left a box tipped
+# after the settling, and once swept the cursor across in a few simulated frames, so the grab
+# yanked the cloth and flung the box it is anchored to 1.3 m. The script decides when the viewer
+# stops, so no xdotool call can meet a window that is already gone.
 # It prints the viewer's output (the dynamic bodies' final positions) for the caller to check.
 # Usage: viewer_drag.sh TANDEM SCENE X0 Y0 X1 Y1 [CAMERA]   (CAMERA: ex,ey,ez,tx,ty,tz)
 set -euo pipefail
@@ -23,30 +24,35 @@ trap 'kill -TERM \$viewer 2>/dev/null || true; cat "$output"' EXIT
 simulated() {
   local before=\$(grep -c '^simulated ' "$output" || true)
   kill -USR1 \$viewer
-  for _ in \$(seq 1 200); do
+  for _ in \$(seq 1 500); do
     [ "\$(grep -c '^simulated ' "$output" || true)" -gt "\$before" ] && break
-    sleep 0.05
+    sleep 0.02
   done
   grep '^simulated ' "$output" | tail -1 | cut -d' ' -f2
 }
+# Waits until the viewer has simulated SPAN more seconds (each answer comes after a whole frame,
+# so a frame that has not yet seen the last mouse event is never counted as one that has).
+# A viewer that stops answering fails the caller's checks after 60 s instead of hanging.
+wait_simulated() {
+  local start=\$(simulated) deadline=\$((SECONDS + 60))
+  while [ \$SECONDS -lt \$deadline ]; do
+    awk -v now="\$(simulated)" -v start="\$start" -v span="\$1" 'BEGIN { exit !(now >= start + span) }' && return
+  done
+}
 window=\$(timeout 60 xdotool search --sync --name Tandem | head -1 || true)
 if [ -z "\$window" ]; then echo "viewer_drag.sh: no Tandem window within 60 s" >&2; exit 1; fi
-sleep 1
+wait_simulated 0.2
 xdotool mousemove --window "\$window" $x0 $y0
-sleep 0.3
+wait_simulated 0.05
 xdotool mousedown 1
-for i in \$(seq 1 40); do
-  xdotool mousemove --window "\$window" \$(( $x0 + ($x1 - $x0) * i / 40 )) \$(( $y0 + ($y1 - $y0) * i / 40 ))
-  sleep 0.03
+wait_simulated 0.05  # the press is seen, and the pick made, at (X0, Y0)
+for i in \$(seq 1 20); do
+  xdotool mousemove --window "\$window" \$(( $x0 + ($x1 - $x0) * i / 20 )) \$(( $y0 + ($y1 - $y0) * i / 20 ))
+  wait_simulated 0.06
 done
-sleep 1
+wait_simulated 1
 xdotool mouseup 1
-released=\$(simulated)
-deadline=\$((SECONDS + 60))  # a viewer that stops answering fails the caller's checks, not hangs
-while [ \$SECONDS -lt \$deadline ]; do
-  awk -v now="\$(simulated)" -v released="\$released" 'BEGIN { exit !(now >= released + 3) }' && break
-  sleep 0.1
-done
+wait_simulated 3
 kill -TERM \$viewer
 trap - EXIT
 wait \$viewer
