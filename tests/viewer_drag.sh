@@ -4,10 +4,9 @@
 # 3 s, then tells the viewer to quit (SIGTERM: it finishes its frame and prints where the dynamic
 # bodies are). Every span is simulated time, not wall-clock time: the script asks the viewer for
 # its simulated time with SIGUSR1 and waits for it to pass, because the viewer keeps real time
-# only on an idle machine. Paced by the wall clock, a loaded CI machine once left a box tipped
-# after the settling, and once swept the cursor across in a few simulated frames, so the grab
-# yanked the cloth and flung the box it is anchored to 1.3 m. The script decides when the viewer
-# stops, so no xdotool call can meet a window that is already gone.
+# only on an idle machine: paced by the wall clock, a loaded machine simulated a shorter, faster
+# drag and less settling than an idle one. The script decides when the viewer stops, so no
+# xdotool call can meet a window that is already gone.
 # It prints the viewer's output (the dynamic bodies' final positions) for the caller to check.
 # Usage: viewer_drag.sh TANDEM SCENE X0 Y0 X1 Y1 [CAMERA]   (CAMERA: ex,ey,ez,tx,ty,tz)
 set -euo pipefail

@@ -57,15 +57,15 @@
 // Contacts: every node of a limited body near a rigid shape the body touched this step is kept
 // out of it (put back on the surface, thickness away, along the normal) every fourth pass and
 // after the last, so the edges cannot drag it through them; those pushes move positions only,
-// like the contacts' own push-out. Not the pairs that have no contact (a node anchored to the
-// body, or one edge from such a node: listAnchoredPairs): kept out by the passes alone, a
-// node the edges drew into the body was put back on its surface each step with the edges'
-// pull into it as velocity, which no contact row then stopped, so the next step's pull was
-// larger (2, 4, 8 cm of pushes on successive steps), until the cloth by the anchors lifted and
-// turned its box (tests/test_grab.cpp, DraggingAClothAnchoredToABox...). (Every pass: the same result, 18 % slower on the paper's
-// cloth.) Faces that a contact found near a sphere's centre or a capsule's core are kept off it
-// the same way (FaceOnCore, below), so that the edges cannot draw a face's nodes round a body
-// smaller than the face.
+// like the contacts' own push-out. (Every pass: the same result, 18 % slower on the paper's
+// cloth.) Not the pairs that have no contact (a node anchored to the body, or one edge from
+// such a node: listAnchoredPairs): kept out by the passes alone, a node the edges drew into the
+// body was put back on its surface each step with the edges' pull into it as velocity, which no
+// contact row then stopped, so the next step's pull was larger (2, 4, 8 cm of pushes on
+// successive steps), until the cloth by the anchors lifted and turned its box
+// (tests/test_grab.cpp, DraggingAClothAnchoredToABox...). Faces that a contact found near a
+// sphere's centre or a capsule's core are kept off it the same way (FaceOnCore, below), so that
+// the edges cannot draw a face's nodes round a body smaller than the face.
 #pragma once
 
 #include "collision/contact_detection.h"
