@@ -109,7 +109,7 @@ void World::Impl::limitStrainOfUnprojectedRows() {
       CollisionRigid& shape = scratch.shapes[b];
       shape = {rigidShapes[b].get(), bullet.position(int(b)), bullet.orientation(int(b)), Vec3::Zero(), Vec3::Zero(), 0.0, 0.0};
       for (int32_t n = body.firstNode; n < body.firstNode + body.nodeCount; ++n) {
-        if (std::binary_search(anchoredPairs.begin(), anchoredPairs.end(), nodeBodyKey(n, static_cast<int32_t>(b))))
+        if (isAnchoredPair(anchoredPairs, n, static_cast<int32_t>(b)))
           continue;  // no contact rows between them (listAnchoredPairs), so no keeping out either
         const Vec3 local = shape.orientation.conjugate() * (nodes.position[n] - shape.position);
         const geometry::ShapeDistance near = geometry::distanceToShape(*shape.shape, local, reach);

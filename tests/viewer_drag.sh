@@ -31,12 +31,15 @@ simulated() {
 }
 # Waits until the viewer has simulated SPAN more seconds (each answer comes after a whole frame,
 # so a frame that has not yet seen the last mouse event is never counted as one that has).
-# A viewer that stops answering fails the caller's checks after 60 s instead of hanging.
+# A viewer that has quit, or has not got there within 60 s, ends the script with an error,
+# at once, instead of every later wait running into its own limit.
 wait_simulated() {
   local start=\$(simulated) deadline=\$((SECONDS + 60))
-  while [ \$SECONDS -lt \$deadline ]; do
+  while [ \$SECONDS -lt \$deadline ] && kill -0 \$viewer 2>/dev/null; do
     awk -v now="\$(simulated)" -v start="\$start" -v span="\$1" 'BEGIN { exit !(now >= start + span) }' && return
   done
+  echo "viewer_drag.sh: the viewer did not simulate \$1 s more (quit, or over 60 s)" >&2
+  exit 1
 }
 window=\$(timeout 60 xdotool search --sync --name Tandem | head -1 || true)
 if [ -z "\$window" ]; then echo "viewer_drag.sh: no Tandem window within 60 s" >&2; exit 1; fi

@@ -84,9 +84,7 @@ struct Detector {
   // solve can speed a node up (a cloth whipping round an edge). Callers add a thickness.
   double closing(const Vec3& a, const Vec3& b) const { return 2.0 * (a - b).norm() * timeStep; }
 
-  bool isAnchored(int32_t node, int32_t body) const {
-    return std::binary_search(anchored.begin(), anchored.end(), nodeBodyKey(node, body));
-  }
+  bool isAnchored(int32_t node, int32_t body) const { return isAnchoredPair(anchored, node, body); }
 
   void addRigidContact(const CollisionSurface& surface, const std::array<int32_t, 3>& node,
                        const std::array<double, 3>& weight, int count, int32_t body, const Vec3& rigidPoint,
@@ -423,6 +421,10 @@ void findMeetingSurfaces(std::span<const CollisionSurface> surfaces, std::span<c
 
 uint64_t nodeBodyKey(int32_t node, int32_t body) {
   return (static_cast<uint64_t>(static_cast<uint32_t>(node)) << 32) | static_cast<uint32_t>(body);
+}
+
+bool isAnchoredPair(std::span<const uint64_t> anchored, int32_t node, int32_t body) {
+  return std::binary_search(anchored.begin(), anchored.end(), nodeBodyKey(node, body));
 }
 
 void detectContacts(std::span<const CollisionSurface> surfaces, const NodeArrays& nodes,

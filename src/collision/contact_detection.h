@@ -58,6 +58,8 @@ struct CollisionRigid {
 // A node anchored to a rigid body does not collide with it (nor do faces around the node); the
 // world lists its neighbours too (World::Impl::listAnchoredPairs).
 uint64_t nodeBodyKey(int32_t node, int32_t body);
+// Whether the pair is in `anchored` (sorted nodeBodyKey's): it has no contact.
+bool isAnchoredPair(std::span<const uint64_t> anchored, int32_t node, int32_t body);
 
 // Which surfaces may touch which, given a box around each: meets[a * count + b] is set for a
 // surface with itself when it self-collides, and for two whose boxes overlap and whose
